@@ -1,0 +1,58 @@
+//! The conservativeness check of a bit-accurate result against the exact oracle.
+//!
+//! Contract (ARCHITECTURE.md): a ray that truly hits must be reported as a hit, and the reported
+//! `[t_entry, t_exit]` must enclose the true interval. A reported hit that is truly a miss is a false hit:
+//! allowed, counted as extra work.
+
+use crate::exact::{slab_exact, ExactHit};
+use crate::fixed::{FixBox, FixFormat, FixRay, GridMap};
+use crate::geom::{Aabb, Ray};
+use crate::slab_fix::{slab_fix, SlabFixOut};
+
+/// How one vector compared with the truth.
+#[derive(Clone, Debug, PartialEq)]
+pub enum Verdict {
+    /// Both agree on the hit, and the interval encloses the exact one.
+    Agree,
+    /// The datapath reports a hit that is truly a miss (allowed: extra work).
+    FalseHit,
+    /// A true hit reported as a miss, or an interval that does not enclose the truth: a correctness bug.
+    Violation(String),
+}
+
+/// Compares a fixed-point result with the exact oracle.
+pub fn judge_fix(fmt: &FixFormat, fr: &FixRay, out: &SlabFixOut, exact: &ExactHit) -> Verdict {
+    match (exact.hit, out.hit) {
+        (false, false) => Verdict::Agree,
+        (false, true) => Verdict::FalseHit,
+        (true, false) => Verdict::Violation("false miss".into()),
+        (true, true) => {
+            let (en, ex) = (fr.t_world(fmt, out.t_entry), fr.t_world(fmt, out.t_exit));
+            if en > exact.entry {
+                Verdict::Violation(format!(
+                    "t_entry {} is after the exact entry {}",
+                    en.to_f64(),
+                    exact.entry.to_f64()
+                ))
+            } else if ex < exact.exit {
+                Verdict::Violation(format!(
+                    "t_exit {} is before the exact exit {}",
+                    ex.to_f64(),
+                    exact.exit.to_f64()
+                ))
+            } else {
+                Verdict::Agree
+            }
+        }
+    }
+}
+
+/// Quantises one world vector, runs the bit-accurate model and the exact oracle, and judges.
+/// Returns the quantised inputs and output too, for reporting a failure.
+pub fn check_fix(map: &GridMap, ray: &Ray, b: &Aabb) -> Result<(FixRay, FixBox, SlabFixOut, Verdict), crate::Error> {
+    let fr = map.quantize_ray(ray)?;
+    let fb = map.quantize_box(b)?;
+    let out = slab_fix(&map.fmt, &fr, &fb);
+    let v = judge_fix(&map.fmt, &fr, &out, &slab_exact(ray, b));
+    Ok((fr, fb, out, v))
+}
