@@ -1,1 +1,46 @@
-pub mod x {}
+//! rust-hdl blocks of the rtu testers, one block a file, and their Verilog export.
+//!
+//! | block | file | model it matches |
+//! | --- | --- | --- |
+//! | [`axis_dist::AxisDist`] | `axis_dist.rs` | `golden::slab_fix::axis_distances` |
+//! | [`mul_round::MulRound`] | `mul_round.rs` | `golden::slab_fix::{mul_floor, mul_ceil}` |
+//! | [`slab_fix::SlabFix`] | `slab_fix.rs` | `golden::slab_fix::slab_fix` |
+
+pub mod axis_dist;
+pub mod export;
+pub mod mul_round;
+pub mod slab_fix;
+
+pub use slab_fix::{SlabFix, SLAB_FIX_LATENCY, TAG_BITS};
+
+/// The slab tester for `golden::fixed::FixFormat::b8()`.
+pub type SlabFixB8 = SlabFix<8, 9, 12, 14>;
+/// The slab tester for `golden::fixed::FixFormat::b12()`.
+pub type SlabFixB12 = SlabFix<12, 13, 16, 20>;
+/// The slab tester for `golden::fixed::FixFormat::b16()`.
+pub type SlabFixB16 = SlabFix<16, 17, 20, 24>;
+
+/// Runs `$body` with `$t` bound to the `SlabFix` type of a preset format, or returns an error for a
+/// format without an instantiated block (const generics need the widths at compile time).
+#[macro_export]
+macro_rules! with_slab_fix {
+    ($fmt:expr, $t:ident, $body:block) => {{
+        let f: &golden::fixed::FixFormat = $fmt;
+        if *f == golden::fixed::FixFormat::b8() {
+            type $t = $crate::SlabFixB8;
+            Ok($body)
+        } else if *f == golden::fixed::FixFormat::b12() {
+            type $t = $crate::SlabFixB12;
+            Ok($body)
+        } else if *f == golden::fixed::FixFormat::b16() {
+            type $t = $crate::SlabFixB16;
+            Ok($body)
+        } else {
+            Err(format!(
+                "no RTL instance for format {}: the RTL is instantiated for the presets b8, b12, b16 \
+                 (add a type alias in rtl/src/lib.rs for another)",
+                f.name()
+            ))
+        }
+    }};
+}

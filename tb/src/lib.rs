@@ -1,1 +1,26 @@
+//! Testbenches of the rtu blocks.
+//!
+//! | module | what it does |
+//! | --- | --- |
+//! | [`dut`] | the [`dut::PipelinedDut`] trait and a stream runner that checks results, tag order and latency |
+//! | [`rtl_sim`] | drives a rust-hdl block cycle by cycle (the fast direct loop), with optional VCD |
+//! | [`vcd_read`] | reads a VCD back and measures when `valid` leaves a block |
+//! | [`verilator`] | builds a C++ harness around exported Verilog and streams vectors through it |
+//! | [`campaign`] | large streamed conservativeness and cross-simulation campaigns with progress |
+//! | [`strategies`] | proptest strategies over quantised slab vectors |
 
+pub mod campaign;
+pub mod dut;
+pub mod rtl_sim;
+pub mod strategies;
+pub mod vcd_read;
+pub mod verilator;
+
+/// The project's output folder for generated artefacts (Verilog, VCD, reports, harness builds):
+/// `$RTU_OUT`, or `out/` at the workspace root.
+pub fn out_dir() -> std::path::PathBuf {
+    match std::env::var_os("RTU_OUT") {
+        Some(p) => p.into(),
+        None => std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("..").join("out"),
+    }
+}

@@ -1,0 +1,45 @@
+//! Verilog export: one `.v` per block and configuration, the configuration in the module name.
+//!
+//! rust-hdl names the top module `top` and each child `top$path`; the export renames the whole family
+//! after the block and its format (for example `slab_fix_g16_i20f14_t24f6`), so several configurations
+//! can be synthesised together.
+
+use golden::fixed::FixFormat;
+use rust_hdl::prelude::*;
+use std::path::{Path, PathBuf};
+
+/// Verilog of a block, with its top module (and children) renamed to `name`.
+pub fn verilog_named<B: Block>(uut: &mut B, name: &str) -> String {
+    uut.connect_all();
+    let v = generate_verilog(uut);
+    v.replace("module top(", &format!("module {name}("))
+        .replace("module top$", &format!("module {name}$"))
+        .replace("\ntop$", &format!("\n{name}$"))
+        .replace(" top$", &format!(" {name}$"))
+}
+
+/// Module name of the fixed slab tester for a format.
+pub fn slab_fix_module(fmt: &FixFormat) -> String {
+    format!("slab_fix_{}", fmt.name())
+}
+
+/// Verilog of the fixed slab tester for a preset format.
+pub fn slab_fix_verilog(fmt: &FixFormat) -> Result<String, String> {
+    crate::with_slab_fix!(fmt, S, {
+        let mut uut = S::new(fmt);
+        verilog_named(&mut uut, &slab_fix_module(fmt))
+    })
+}
+
+/// Writes `<dir>/<module>.v` for every preset slab format; returns the paths written.
+pub fn export_all(dir: &Path) -> std::io::Result<Vec<PathBuf>> {
+    std::fs::create_dir_all(dir)?;
+    let mut out = vec![];
+    for fmt in FixFormat::presets() {
+        let v = slab_fix_verilog(&fmt).expect("presets are instantiated");
+        let p = dir.join(format!("{}.v", slab_fix_module(&fmt)));
+        std::fs::write(&p, v)?;
+        out.push(p);
+    }
+    Ok(out)
+}
