@@ -91,54 +91,46 @@ impl<const D: usize, const I: usize, const T: usize> Logic for MulRound<D, I, T>
     }
 
     fn hdl(&self) -> Verilog {
+        // `ceil` and `shift` are this block's constants, emitted by rust-hdl as localparams.
         let p = D + I; // signed product width: |a * m| < 2^(D-1) * 2^I
-        let s = self.shift.val().index();
-        let ceil = self.ceil.val();
-        let (lo, hi) = if ceil {
-            (-(1i64 << (T - 1)) + 1, (1i64 << (T - 1)) - 1)
-        } else {
-            (-(1i64 << (T - 1)), (1i64 << (T - 1)) - 2)
-        };
-        let lit = |v: i64| {
+        let sat = |v: i64| {
             if v < 0 {
                 format!("(-{}'sd{})", p + 1, -v)
             } else {
                 format!("{}'sd{}", p + 1, v)
             }
         };
-        let (quot, unbounded_pos) = if ceil {
-            // ceil(p / 2^s) = -floor(-p / 2^s); one extra bit keeps -p from overflowing.
-            (format!("-((-prod_x) >>> {s})"), "!a[D-1]")
-        } else {
-            (format!("prod_x >>> {s}"), "(!a[D-1] && (a != 0))")
-        };
+        let ninf = -(1i64 << (T - 1));
+        let pinf = (1i64 << (T - 1)) - 1;
         Verilog::Custom(format!(
             "\
-// {mode} of a * m / 2^{s}, saturated to a {T}-bit t code; m = all ones means unbounded.
-localparam D = {D};
+// ceil ? ceil(a * m / 2^shift) : floor(a * m / 2^shift), saturated to a {T}-bit t code.
+// m = all ones means unbounded. ceil(p) = -floor(-p); one extra bit keeps -p from overflowing.
 wire signed [{pm1}:0] prod = $signed(a) * $signed({{1'b0, m}});
 wire signed [{p}:0] prod_x = {{prod[{pm1}], prod}};
-wire signed [{p}:0] quot = {quot};
+wire signed [{p}:0] quot = ceil ? -((-prod_x) >>> shift) : (prod_x >>> shift);
+wire signed [{p}:0] lo = ceil ? {lo_ceil} : {lo_floor};
+wire signed [{p}:0] hi = ceil ? {hi_ceil} : {hi_floor};
+wire positive = !a[{dm1}] && (ceil || (a != {D}'d0));
 always @(*) begin
    if (m == {{{I}{{1'b1}}}})
-      y = {unbounded_pos} ? {T}'d{pinf} : {T}'d{ninf};
-   else if (quot < {lo_lit})
-      y = {T}'d{lo_code};
-   else if (quot > {hi_lit})
-      y = {T}'d{hi_code};
+      y = positive ? {T}'d{pinf} : {T}'d{ninf_code};
+   else if (quot < lo)
+      y = lo[{tm1}:0];
+   else if (quot > hi)
+      y = hi[{tm1}:0];
    else
       y = quot[{tm1}:0];
 end
 ",
-            mode = if ceil { "ceil" } else { "floor" },
             pm1 = p - 1,
+            dm1 = D - 1,
             tm1 = T - 1,
-            pinf = (1u64 << (T - 1)) - 1,
-            ninf = 1u64 << (T - 1),
-            lo_lit = lit(lo),
-            hi_lit = lit(hi),
-            lo_code = (lo as u64) & ((1u64 << T) - 1),
-            hi_code = hi as u64,
+            ninf_code = 1u64 << (T - 1),
+            lo_ceil = sat(ninf + 1),
+            lo_floor = sat(ninf),
+            hi_ceil = sat(pinf),
+            hi_floor = sat(pinf - 1),
         ))
     }
 }

@@ -194,8 +194,32 @@ impl<const G: usize, const D: usize, const I: usize, const T: usize> SlabFix<G, 
         }
     }
 
-    /// Drives one test (testbench side): `None` drives a bubble.
-    pub fn drive(&mut self, test: Option<(u16, &FixRay, &FixBox)>) {
+}
+
+/// The testbench-side API of a fixed slab tester of any width, so drivers need not spell the widths.
+pub trait SlabFixIo: Block {
+    /// A tester for `fmt` (whose widths must match the block's).
+    fn for_format(fmt: &FixFormat) -> Self;
+    /// Sets the clock input.
+    fn set_clock(&mut self, high: bool);
+    /// Drives one test: `None` drives a bubble (`valid_in` low).
+    fn drive(&mut self, test: Option<(u16, &FixRay, &FixBox)>);
+    /// Reads the outputs: `Some((tag, result))` when `valid_out` is high.
+    fn result(&self) -> Option<(u16, SlabFixOut)>;
+    /// The raw value of an output port, by its Verilog name (for cross-simulation).
+    fn output_word(&self, port: &str) -> Option<u64>;
+}
+
+impl<const G: usize, const D: usize, const I: usize, const T: usize> SlabFixIo for SlabFix<G, D, I, T> {
+    fn for_format(fmt: &FixFormat) -> Self {
+        Self::new(fmt)
+    }
+
+    fn set_clock(&mut self, high: bool) {
+        self.clock.next = Clock { clk: high };
+    }
+
+    fn drive(&mut self, test: Option<(u16, &FixRay, &FixBox)>) {
         match test {
             Some((tag, r, b)) => {
                 self.valid_in.next = true;
@@ -216,8 +240,7 @@ impl<const G: usize, const D: usize, const I: usize, const T: usize> SlabFix<G, 
         }
     }
 
-    /// Reads the outputs (testbench side): `Some((tag, result))` when `valid_out` is high.
-    pub fn result(&self) -> Option<(u16, SlabFixOut)> {
+    fn result(&self) -> Option<(u16, SlabFixOut)> {
         if !self.valid_out.val() {
             return None;
         }
@@ -229,6 +252,17 @@ impl<const G: usize, const D: usize, const I: usize, const T: usize> SlabFix<G, 
                 t_exit: sext(self.t_exit.val().to_u64(), T),
             },
         ))
+    }
+
+    fn output_word(&self, port: &str) -> Option<u64> {
+        Some(match port {
+            "valid_out" => self.valid_out.val() as u64,
+            "tag_out" => self.tag_out.val().to_u64(),
+            "hit" => self.hit.val() as u64,
+            "t_entry" => self.t_entry.val().to_u64(),
+            "t_exit" => self.t_exit.val().to_u64(),
+            _ => return None,
+        })
     }
 }
 

@@ -1,1 +1,155 @@
+//! Streamed vector sources and campaigns: conservativeness of the bit-accurate model against the exact
+//! oracle, and cross-simulation of the exported Verilog. Nothing is stored: memory stays flat.
 
+use crate::slab_fix_tb::SlabVec;
+use glam::DVec3;
+use golden::check::{check_fix, Verdict};
+use golden::fixed::{FixBox, FixFormat, FixRay, GridMap};
+use golden::gen::{GenKind, SlabGen};
+use rand::{Rng, SeedableRng};
+use rand_pcg::Pcg64;
+
+/// Scene bounds of the campaigns: deliberately off-centre and non-cubic, so grid cells are not aligned
+/// with round world numbers.
+pub fn campaign_bounds() -> (DVec3, DVec3) {
+    (DVec3::new(-100.0, -3.0, 7.0), DVec3::new(100.0, 50.0, 9.5))
+}
+
+/// The grid of `fmt` over the campaign bounds.
+pub fn campaign_map(fmt: FixFormat) -> GridMap {
+    let (lo, hi) = campaign_bounds();
+    GridMap::for_bounds(fmt, lo, hi).expect("campaign bounds are finite")
+}
+
+/// A world-vector generator over the campaign bounds, snapping some values to the grid of `map`.
+pub fn world_gen(map: &GridMap, kind: GenKind, seed: u64) -> SlabGen {
+    let (lo, hi) = campaign_bounds();
+    SlabGen::new(kind, lo, hi, golden::fixed::ldexp(1.0, map.k), seed)
+}
+
+/// A quantised vector with every field uniform over its code range (including codes that quantisation
+/// never produces, such as `m_lo > m_hi`): the RTL must match the model on all inputs.
+pub fn raw_fix_vector(fmt: &FixFormat, rng: &mut Pcg64) -> (FixRay, FixBox) {
+    let g = |rng: &mut Pcg64| rng.gen_range(fmt.gmin()..=fmt.gmax());
+    let m = |rng: &mut Pcg64| match rng.gen_range(0..8) {
+        0 => fmt.inv_inf(),
+        _ => rng.gen_range(0..=fmt.inv_inf()),
+    };
+    let t = |rng: &mut Pcg64| rng.gen_range(fmt.t_neg_inf()..=fmt.t_pos_inf());
+    let mut r = FixRay::default();
+    let mut b = FixBox::default();
+    for a in 0..3 {
+        r.o_lo[a] = g(rng);
+        r.o_hi[a] = if rng.gen() { r.o_lo[a] } else { g(rng) };
+        r.m_lo[a] = m(rng);
+        r.m_hi[a] = if rng.gen() { r.m_lo[a] } else { m(rng) };
+        r.neg[a] = rng.gen();
+        b.lo[a] = g(rng);
+        b.hi[a] = g(rng);
+    }
+    r.t_min = t(rng);
+    r.t_max = t(rng);
+    (r, b)
+}
+
+/// `n` quantised test vectors for the pipeline from a seeded stream: world vectors of `kind` quantised on
+/// the campaign grid, one in eight replaced by a raw-code vector, and (when `bubbles`) about one cycle in
+/// eight a bubble.
+pub fn slab_vectors(fmt: FixFormat, kind: GenKind, seed: u64, n: u64, bubbles: bool) -> impl Iterator<Item = SlabVec> + Send + 'static {
+    let map = campaign_map(fmt);
+    let mut gen = world_gen(&map, kind, seed);
+    let mut rng = Pcg64::seed_from_u64(seed ^ 0x9e37_79b9_7f4a_7c15);
+    let mut left = n;
+    std::iter::from_fn(move || {
+        if left == 0 {
+            return None;
+        }
+        if bubbles && rng.gen_ratio(1, 8) {
+            return Some(None);
+        }
+        left -= 1;
+        if rng.gen_ratio(1, 8) {
+            return Some(Some(raw_fix_vector(&fmt, &mut rng)));
+        }
+        let (r, b) = gen.next().expect("endless");
+        Some(Some((
+            map.quantize_ray(&r).expect("campaign vectors fit the grid"),
+            map.quantize_box(&b).expect("campaign vectors fit the grid"),
+        )))
+    })
+}
+
+/// Tally of a conservativeness campaign.
+#[derive(Clone, Debug, Default, PartialEq, Eq)]
+pub struct ConservativeStats {
+    pub vectors: u64,
+    pub true_hits: u64,
+    pub false_hits: u64,
+    /// The first few violations (false misses or non-enclosing intervals), described.
+    pub violations: Vec<String>,
+    pub violation_count: u64,
+}
+
+impl ConservativeStats {
+    fn merge(&mut self, o: ConservativeStats) {
+        self.vectors += o.vectors;
+        self.true_hits += o.true_hits;
+        self.false_hits += o.false_hits;
+        self.violation_count += o.violation_count;
+        self.violations.extend(o.violations);
+        self.violations.truncate(10);
+    }
+    /// False hits per true miss.
+    pub fn false_hit_rate(&self) -> f64 {
+        self.false_hits as f64 / (self.vectors - self.true_hits).max(1) as f64
+    }
+}
+
+/// Runs `n` world vectors of `kind` through quantisation, the bit-accurate model and the exact oracle on
+/// `threads` threads (thread `k` uses seed `seed + k`), judging each. `progress(done)` is called from the
+/// threads every 4,096 vectors with the count of that batch.
+pub fn conservative_campaign(
+    fmt: FixFormat,
+    kind: GenKind,
+    n: u64,
+    seed: u64,
+    threads: usize,
+    progress: &(dyn Fn(u64) + Sync),
+) -> ConservativeStats {
+    let map = campaign_map(fmt);
+    let threads = threads.max(1) as u64;
+    let mut total = ConservativeStats::default();
+    std::thread::scope(|s| {
+        let handles: Vec<_> = (0..threads)
+            .map(|k| {
+                let share = n / threads + u64::from(k < n % threads);
+                s.spawn(move || {
+                    let mut st = ConservativeStats::default();
+                    for (i, (r, b)) in world_gen(&map, kind, seed.wrapping_add(k)).take(share as usize).enumerate() {
+                        let (fr, fb, out, v) = check_fix(&map, &r, &b).expect("campaign vectors fit the grid");
+                        st.vectors += 1;
+                        match v {
+                            Verdict::Agree => st.true_hits += out.hit as u64,
+                            Verdict::FalseHit => st.false_hits += 1,
+                            Verdict::Violation(why) => {
+                                st.true_hits += 1;
+                                st.violation_count += 1;
+                                if st.violations.len() < 10 {
+                                    st.violations.push(format!("{why}\n  ray {r:?}\n  box {b:?}\n  quantised {fr:?} {fb:?}\n  result {out:?}"));
+                                }
+                            }
+                        }
+                        if i % 4096 == 4095 {
+                            progress(4096);
+                        }
+                    }
+                    st
+                })
+            })
+            .collect();
+        for h in handles {
+            total.merge(h.join().expect("campaign thread"));
+        }
+    });
+    total
+}

@@ -12,6 +12,7 @@
 pub mod campaign;
 pub mod dut;
 pub mod rtl_sim;
+pub mod slab_fix_tb;
 pub mod strategies;
 pub mod vcd_read;
 pub mod verilator;

@@ -4,7 +4,7 @@
 use crate::dut::PipelinedDut;
 use golden::fixed::{FixBox, FixFormat, FixRay};
 use golden::slab_fix::SlabFixOut;
-use rtl::slab_fix::SlabFix;
+use rtl::slab_fix::SlabFixIo;
 use rust_hdl::core::vcd_probe::{write_vcd_change, write_vcd_dump, write_vcd_header, VCDProbe};
 use rust_hdl::prelude::*;
 use std::fs::File;
@@ -15,15 +15,16 @@ use std::path::Path;
 pub const HALF_PERIOD: u64 = 5;
 
 /// A fixed slab tester in simulation.
-pub struct SlabFixRtl<const G: usize, const D: usize, const I: usize, const T: usize> {
-    uut: SlabFix<G, D, I, T>,
+pub struct SlabFixRtl<S: SlabFixIo> {
+    /// The block (read its outputs for cross-simulation).
+    pub uut: S,
     vcd: Option<VCDProbe<BufWriter<File>>>,
     cycle: u64,
 }
 
-impl<const G: usize, const D: usize, const I: usize, const T: usize> SlabFixRtl<G, D, I, T> {
+impl<S: SlabFixIo> SlabFixRtl<S> {
     pub fn new(fmt: &FixFormat) -> Self {
-        let mut uut = SlabFix::<G, D, I, T>::new(fmt);
+        let mut uut = S::for_format(fmt);
         uut.connect_all();
         SlabFixRtl { uut, vcd: None, cycle: 0 }
     }
@@ -52,7 +53,7 @@ impl<const G: usize, const D: usize, const I: usize, const T: usize> SlabFixRtl<
     }
 }
 
-impl<const G: usize, const D: usize, const I: usize, const T: usize> PipelinedDut for SlabFixRtl<G, D, I, T> {
+impl<S: SlabFixIo> PipelinedDut for SlabFixRtl<S> {
     type In = (FixRay, FixBox);
     type Out = SlabFixOut;
 
@@ -62,10 +63,10 @@ impl<const G: usize, const D: usize, const I: usize, const T: usize> PipelinedDu
 
     fn step(&mut self, input: Option<(u16, &(FixRay, FixBox))>) -> Option<(u16, SlabFixOut)> {
         self.uut.drive(input.map(|(tag, (r, b))| (tag, r, b)));
-        self.uut.clock.next = Clock { clk: false };
+        self.uut.set_clock(false);
         let t = self.cycle * 2 * HALF_PERIOD;
         self.settle(t);
-        self.uut.clock.next = Clock { clk: true };
+        self.uut.set_clock(true);
         self.settle(t + HALF_PERIOD);
         self.cycle += 1;
         self.uut.result()

@@ -1,1 +1,69 @@
+//! proptest strategies over quantised slab vectors: raw codes (shrinking toward zero), format extremes,
+//! and quantised world vectors from the adversarial generator.
 
+use crate::campaign::{campaign_map, world_gen};
+use crate::slab_fix_tb::SlabVec;
+use golden::fixed::{FixBox, FixFormat, FixRay};
+use golden::gen::GenKind;
+use proptest::prelude::*;
+
+fn grid(fmt: FixFormat) -> impl Strategy<Value = i64> {
+    prop_oneof![Just(fmt.gmin()), Just(fmt.gmax()), Just(0i64), Just(-1i64), fmt.gmin()..=fmt.gmax()]
+}
+
+fn inv(fmt: FixFormat) -> impl Strategy<Value = u64> {
+    prop_oneof![Just(fmt.inv_inf()), Just(fmt.inv_inf() - 1), Just(0u64), Just(1u64), 0..=fmt.inv_inf()]
+}
+
+fn tcode(fmt: FixFormat) -> impl Strategy<Value = i64> {
+    prop_oneof![
+        Just(fmt.t_neg_inf()),
+        Just(fmt.t_pos_inf()),
+        Just(fmt.t_neg_inf() + 1),
+        Just(fmt.t_pos_inf() - 1),
+        Just(0i64),
+        fmt.t_neg_inf()..=fmt.t_pos_inf()
+    ]
+}
+
+/// Any quantised vector, field by field.
+pub fn raw_case(fmt: FixFormat) -> impl Strategy<Value = (FixRay, FixBox)> {
+    let axis = || (grid(fmt), grid(fmt), inv(fmt), inv(fmt), any::<bool>(), grid(fmt), grid(fmt));
+    ([axis(), axis(), axis()], tcode(fmt), tcode(fmt)).prop_map(|(axes, t_min, t_max)| {
+        let mut r = FixRay { t_min, t_max, ..FixRay::default() };
+        let mut b = FixBox::default();
+        for (a, (olo, ohi, mlo, mhi, neg, lo, hi)) in axes.into_iter().enumerate() {
+            (r.o_lo[a], r.o_hi[a], r.m_lo[a], r.m_hi[a], r.neg[a]) = (olo, ohi, mlo, mhi, neg);
+            (b.lo[a], b.hi[a]) = (lo, hi);
+        }
+        (r, b)
+    })
+}
+
+/// A quantised world vector from the uniform or adversarial generator, drawn by seed.
+pub fn world_case(fmt: FixFormat) -> impl Strategy<Value = (FixRay, FixBox)> {
+    (any::<u64>(), any::<bool>()).prop_map(move |(seed, adv)| {
+        let map = campaign_map(fmt);
+        let kind = if adv { GenKind::Adversarial } else { GenKind::Uniform };
+        let (r, b) = world_gen(&map, kind, seed).next().expect("endless");
+        (map.quantize_ray(&r).expect("fits"), map.quantize_box(&b).expect("fits"))
+    })
+}
+
+/// One slab vector of either kind.
+pub fn slab_case(fmt: FixFormat) -> impl Strategy<Value = (FixRay, FixBox)> {
+    prop_oneof![raw_case(fmt), world_case(fmt)]
+}
+
+/// A short burst of 1 to 8 tests, back to back or separated by bubbles.
+pub fn slab_burst(fmt: FixFormat) -> impl Strategy<Value = Vec<SlabVec>> {
+    prop::collection::vec((slab_case(fmt), 0..3usize), 1..=8).prop_map(|v| {
+        let mut out = vec![];
+        for (case, bubbles) in v {
+            out.push(Some(case));
+            // Mostly back to back; sometimes one or two bubbles.
+            out.extend(std::iter::repeat(None).take(if bubbles == 2 { 1 } else { 0 }));
+        }
+        out
+    })
+}
