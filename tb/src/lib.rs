@@ -8,6 +8,7 @@
 //! | [`verilator`] | builds a C++ harness around exported Verilog and streams vectors through it |
 //! | [`campaign`] | large streamed conservativeness and cross-simulation campaigns with progress |
 //! | [`strategies`] | proptest strategies over quantised slab vectors |
+//! | [`slab_fix_tb`] | the fixed slab tester's port encoding and cross-simulation loop |
 
 pub mod campaign;
 pub mod dut;
