@@ -49,7 +49,11 @@ pub fn judge_fix(fmt: &FixFormat, fr: &FixRay, out: &SlabFixOut, exact: &ExactHi
 
 /// Quantises one world vector, runs the bit-accurate model and the exact oracle, and judges.
 /// Returns the quantised inputs and output too, for reporting a failure.
-pub fn check_fix(map: &GridMap, ray: &Ray, b: &Aabb) -> Result<(FixRay, FixBox, SlabFixOut, Verdict), crate::Error> {
+pub fn check_fix(
+    map: &GridMap,
+    ray: &Ray,
+    b: &Aabb,
+) -> Result<(FixRay, FixBox, SlabFixOut, Verdict), crate::Error> {
     let fr = map.quantize_ray(ray)?;
     let fb = map.quantize_box(b)?;
     let out = slab_fix(&map.fmt, &fr, &fb);

@@ -67,16 +67,27 @@ impl FixFormat {
             return Err(bad("G (grid bits)", g, "must be in 2..=24".into()));
         }
         if !(2..=32).contains(&i) {
-            return Err(bad("I (inverse-direction bits)", i, "must be in 2..=32".into()));
+            return Err(bad(
+                "I (inverse-direction bits)",
+                i,
+                "must be in 2..=32".into(),
+            ));
         }
         if fi > i {
-            return Err(bad("FI (inverse fraction bits)", fi, format!("must not exceed I = {i}")));
+            return Err(bad(
+                "FI (inverse fraction bits)",
+                fi,
+                format!("must not exceed I = {i}"),
+            ));
         }
         if t < g + 2 || t > 32 {
             return Err(bad(
                 "T (t bits)",
                 t,
-                format!("must be in G+2..=32 = {}..=32 so that t spans the grid", g + 2),
+                format!(
+                    "must be in G+2..=32 = {}..=32 so that t spans the grid",
+                    g + 2
+                ),
             ));
         }
         if ft > t - g - 2 || ft > fi {
@@ -87,7 +98,11 @@ impl FixFormat {
             ));
         }
         if g + i + 1 > 63 {
-            return Err(bad("I (inverse-direction bits)", i, format!("product width G+I+1 = {} exceeds 63", g + i + 1)));
+            return Err(bad(
+                "I (inverse-direction bits)",
+                i,
+                format!("product width G+I+1 = {} exceeds 63", g + i + 1),
+            ));
         }
         Ok(FixFormat { g, i, fi, t, ft })
     }
@@ -126,7 +141,10 @@ impl FixFormat {
         let mut v = [0u32; 5];
         for (n, p) in parts.iter().enumerate() {
             v[n] = p.trim().parse().map_err(|_| {
-                Error::Io(format!("format `{s}`: {} = `{p}` is not a number", names[n]))
+                Error::Io(format!(
+                    "format `{s}`: {} = `{p}` is not a number",
+                    names[n]
+                ))
             })?;
         }
         Self::new(v[0], v[1], v[2], v[3], v[4])
@@ -134,7 +152,10 @@ impl FixFormat {
 
     /// Name used in Verilog module names and reports, e.g. `g16_i20f14_t24f6`.
     pub fn name(&self) -> String {
-        format!("g{}_i{}f{}_t{}f{}", self.g, self.i, self.fi, self.t, self.ft)
+        format!(
+            "g{}_i{}f{}_t{}f{}",
+            self.g, self.i, self.fi, self.t, self.ft
+        )
     }
     /// Smallest grid coordinate.
     pub fn gmin(&self) -> i64 {
@@ -267,7 +288,9 @@ impl GridMap {
             }
             k += 1;
             if k > 1100 {
-                return Err(Error::Io("scene bounds cannot be mapped onto the grid".into()));
+                return Err(Error::Io(
+                    "scene bounds cannot be mapped onto the grid".into(),
+                ));
             }
         }
     }
@@ -276,8 +299,16 @@ impl GridMap {
     pub fn world_bounds(&self) -> (DVec3, DVec3) {
         let f = |q: i64, a: usize| ldexp((q + self.c[a]) as f64, self.k);
         (
-            DVec3::new(f(self.fmt.gmin(), 0), f(self.fmt.gmin(), 1), f(self.fmt.gmin(), 2)),
-            DVec3::new(f(self.fmt.gmax(), 0), f(self.fmt.gmax(), 1), f(self.fmt.gmax(), 2)),
+            DVec3::new(
+                f(self.fmt.gmin(), 0),
+                f(self.fmt.gmin(), 1),
+                f(self.fmt.gmin(), 2),
+            ),
+            DVec3::new(
+                f(self.fmt.gmax(), 0),
+                f(self.fmt.gmax(), 1),
+                f(self.fmt.gmax(), 2),
+            ),
         )
     }
 
@@ -287,7 +318,12 @@ impl GridMap {
     }
 
     fn coord(&self, what: &str, a: usize, x: f64, up: bool) -> Result<i64, Error> {
-        let q = if up { ceil_pow2(x, -self.k) } else { floor_pow2(x, -self.k) }.map(|q| q - self.c[a]);
+        let q = if up {
+            ceil_pow2(x, -self.k)
+        } else {
+            floor_pow2(x, -self.k)
+        }
+        .map(|q| q - self.c[a]);
         match q {
             Some(q) if q >= self.fmt.gmin() && q <= self.fmt.gmax() => Ok(q),
             _ => {
@@ -375,14 +411,14 @@ fn inv_bounds(d: f64, j: i32, fmt: &FixFormat) -> (u64, u64) {
     }
     let (m, e) = significand(d.abs());
     let s = fmt.fi as i32 - j - e; // value = 2^s / (m / 2^52), in (2^(s-1), 2^s]
-    if s - 1 >= fmt.i as i32 {
+    if s > fmt.i as i32 {
         // Larger than 2^I - 1 > largest finite code.
         return (inf - 1, inf);
     }
     debug_assert!(s >= 0, "|d * 2^j| < 2 keeps s >= FI >= 0");
     let num: u128 = 1u128 << (s + 52);
     let lo = (num / m as u128) as u64;
-    let hi = lo + u64::from(num % m as u128 != 0);
+    let hi = lo + u64::from(!num.is_multiple_of(m as u128));
     (lo.min(inf - 1), if hi >= inf { inf } else { hi })
 }
 
@@ -474,7 +510,10 @@ mod tests {
         for fmt in FixFormat::presets() {
             let m = map(fmt);
             let (wl, wh) = m.world_bounds();
-            assert!(wl.max_element() <= -100.0 && wh.min_element() >= 100.0, "{m:?}");
+            assert!(
+                wl.max_element() <= -100.0 && wh.min_element() >= 100.0,
+                "{m:?}"
+            );
             // One step finer would not hold the 200-unit extent.
             let cells = 200.0 / ldexp(1.0, m.k - 1);
             assert!(cells > (fmt.gmax() - fmt.gmin()) as f64, "{m:?}");
@@ -489,7 +528,9 @@ mod tests {
         for a in 0..3 {
             assert!(m.to_world(a, q.lo[a]) <= 0.3 && m.to_world(a, q.hi[a]) >= 0.7);
         }
-        let e = m.quantize_box(&Aabb::new(DVec3::ONE, DVec3::ZERO).unwrap()).unwrap();
+        let e = m
+            .quantize_box(&Aabb::new(DVec3::ONE, DVec3::ZERO).unwrap())
+            .unwrap();
         assert!(e.lo[0] > e.hi[0]);
     }
 

@@ -26,7 +26,9 @@ impl std::str::FromStr for GenKind {
             "uniform" => Ok(GenKind::Uniform),
             "adversarial" => Ok(GenKind::Adversarial),
             "mixed" => Ok(GenKind::Mixed),
-            _ => Err(format!("generator `{s}`: expected uniform, adversarial or mixed")),
+            _ => Err(format!(
+                "generator `{s}`: expected uniform, adversarial or mixed"
+            )),
         }
     }
 }
@@ -267,7 +269,11 @@ impl SlabGen {
             Adversity::FormatLimits => {
                 for a in 0..3 {
                     if self.rng.gen() {
-                        ray.origin[a] = if self.rng.gen() { self.lo[a] } else { self.hi[a] };
+                        ray.origin[a] = if self.rng.gen() {
+                            self.lo[a]
+                        } else {
+                            self.hi[a]
+                        };
                     }
                     if self.rng.gen() {
                         b.min[a] = self.lo[a];
@@ -337,7 +343,10 @@ mod tests {
                 r.validate().unwrap();
                 b.validate().unwrap();
                 for a in 0..3 {
-                    assert!(r.origin[a] >= lo[a] && r.origin[a] <= hi[a], "{case:?} {r:?}");
+                    assert!(
+                        r.origin[a] >= lo[a] && r.origin[a] <= hi[a],
+                        "{case:?} {r:?}"
+                    );
                     for v in [b.min[a], b.max[a]] {
                         assert!(v >= lo[a] && v <= hi[a], "{case:?} {b:?}");
                     }

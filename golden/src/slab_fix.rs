@@ -59,7 +59,11 @@ pub fn mul_ceil(fmt: &FixFormat, x: i64, m: u64) -> i64 {
 /// Per-axis distances `(e, x)` and emptiness, as stage 1 of the pipeline computes them.
 #[inline(always)]
 pub fn axis_distances(r: &FixRay, b: &FixBox, a: usize) -> (i64, i64, bool) {
-    let (near, far) = if r.neg[a] { (b.hi[a], b.lo[a]) } else { (b.lo[a], b.hi[a]) };
+    let (near, far) = if r.neg[a] {
+        (b.hi[a], b.lo[a])
+    } else {
+        (b.lo[a], b.hi[a])
+    };
     let (e, x) = if r.neg[a] {
         (r.o_lo[a] - near, r.o_hi[a] - far)
     } else {
@@ -96,12 +100,21 @@ mod tests {
     use crate::geom::{Aabb, Ray};
     use glam::DVec3;
 
-    fn setup(o: [f64; 3], d: [f64; 3], bmin: [f64; 3], bmax: [f64; 3]) -> (FixFormat, FixRay, FixBox) {
+    fn setup(
+        o: [f64; 3],
+        d: [f64; 3],
+        bmin: [f64; 3],
+        bmax: [f64; 3],
+    ) -> (FixFormat, FixRay, FixBox) {
         let fmt = FixFormat::b12();
         let m = GridMap::for_bounds(fmt, DVec3::splat(-8.0), DVec3::splat(8.0)).unwrap();
         let r = Ray::new(o.into(), d.into(), 0.0, f64::INFINITY).unwrap();
         let b = Aabb::new(bmin.into(), bmax.into()).unwrap();
-        (fmt, m.quantize_ray(&r).unwrap(), m.quantize_box(&b).unwrap())
+        (
+            fmt,
+            m.quantize_ray(&r).unwrap(),
+            m.quantize_box(&b).unwrap(),
+        )
     }
 
     #[test]

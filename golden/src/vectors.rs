@@ -46,8 +46,8 @@ impl VecFormat {
 }
 
 const CSV_FIELDS: [&str; 15] = [
-    "tag", "ox", "oy", "oz", "dx", "dy", "dz", "t_min", "t_max", "min_x", "min_y", "min_z", "max_x", "max_y",
-    "max_z",
+    "tag", "ox", "oy", "oz", "dx", "dy", "dz", "t_min", "t_max", "min_x", "min_y", "min_z",
+    "max_x", "max_y", "max_z",
 ];
 
 fn line_err(src: &str, line: usize, field: &str, why: impl Into<String>) -> Error {
@@ -88,7 +88,9 @@ fn build(src: &str, line: usize, tag: u64, f: &[f64; 14]) -> Result<Vector, Erro
         max: DVec3::new(f[11], f[12], f[13]),
     };
     let relabel = |e: Error| match e {
-        Error::BadValue { what, value, why } => line_err(src, line, &what, format!("{value} is not allowed: {why}")),
+        Error::BadValue { what, value, why } => {
+            line_err(src, line, &what, format!("{value} is not allowed: {why}"))
+        }
         other => other,
     };
     ray.validate().map_err(relabel)?;
@@ -97,15 +99,21 @@ fn build(src: &str, line: usize, tag: u64, f: &[f64; 14]) -> Result<Vector, Erro
 }
 
 fn parse_json_line(src: &str, line: usize, text: &str, index: u64) -> Result<Vector, Error> {
-    let v: Value = serde_json::from_str(text).map_err(|e| line_err(src, line, "(line)", format!("not JSON: {e}")))?;
+    let v: Value = serde_json::from_str(text)
+        .map_err(|e| line_err(src, line, "(line)", format!("not JSON: {e}")))?;
     let obj = v
         .as_object()
         .ok_or_else(|| line_err(src, line, "(line)", "expected a JSON object"))?;
     let tag = match obj.get("tag") {
         None => index,
-        Some(t) => t
-            .as_u64()
-            .ok_or_else(|| line_err(src, line, "tag", format!("`{t}` is not a non-negative integer")))?,
+        Some(t) => t.as_u64().ok_or_else(|| {
+            line_err(
+                src,
+                line,
+                "tag",
+                format!("`{t}` is not a non-negative integer"),
+            )
+        })?,
     };
     let mut f = [0.0; 14];
     for (name, base) in [("origin", 0), ("dir", 3), ("box_min", 8), ("box_max", 11)].iter() {
@@ -115,34 +123,47 @@ fn parse_json_line(src: &str, line: usize, text: &str, index: u64) -> Result<Vec
             .as_array()
             .ok_or_else(|| line_err(src, line, name, "expected an array of three numbers"))?;
         if arr.len() != 3 {
-            return Err(line_err(src, line, name, format!("expected three numbers, found {}", arr.len())));
+            return Err(line_err(
+                src,
+                line,
+                name,
+                format!("expected three numbers, found {}", arr.len()),
+            ));
         }
         for (a, x) in arr.iter().enumerate() {
             f[base + a] = json_num(x).ok_or_else(|| {
-                line_err(src, line, &format!("{name}[{a}]"), format!("`{x}` is not a number"))
+                line_err(
+                    src,
+                    line,
+                    &format!("{name}[{a}]"),
+                    format!("`{x}` is not a number"),
+                )
             })?;
         }
     }
     for (name, idx, default) in [("t_min", 6, 0.0), ("t_max", 7, f64::INFINITY)] {
         f[idx] = match obj.get(name) {
             None => default,
-            Some(x) => json_num(x).ok_or_else(|| line_err(src, line, name, format!("`{x}` is not a number")))?,
+            Some(x) => json_num(x)
+                .ok_or_else(|| line_err(src, line, name, format!("`{x}` is not a number")))?,
         };
     }
     build(src, line, tag, &f)
 }
 
 /// Streams vectors from a reader. Each item is a vector or an error naming the line and field.
-pub fn read_vectors<'a, R: BufRead + 'a>(
+pub fn read_vectors<'a, R: BufRead + Send + 'a>(
     reader: R,
     fmt: VecFormat,
-    src: &'a str,
-) -> Box<dyn Iterator<Item = Result<Vector, Error>> + 'a> {
+    src: impl Into<String>,
+) -> Box<dyn Iterator<Item = Result<Vector, Error>> + Send + 'a> {
+    let src: String = src.into();
     match fmt {
         VecFormat::JsonLines => {
             let mut index = 0u64;
             Box::new(reader.lines().enumerate().filter_map(move |(n, l)| {
                 let line = n + 1;
+                let src = src.as_str();
                 let text = match l {
                     Ok(t) => t,
                     Err(e) => return Some(Err(Error::Io(format!("{src}:{line}: {e}")))),
@@ -165,13 +186,16 @@ pub fn read_vectors<'a, R: BufRead + 'a>(
                 .headers()
                 .map(|h| h.iter().map(|s| s.to_string()).collect())
                 .map_err(|e| Error::Io(format!("{src}: cannot read the CSV header: {e}")));
+            let src_h = src.clone();
             let cols = header.and_then(|h| {
                 let mut cols = [usize::MAX; 15];
                 for (k, name) in CSV_FIELDS.iter().enumerate() {
                     match h.iter().position(|c| c == name) {
                         Some(i) => cols[k] = i,
                         None if *name == "tag" => {}
-                        None => return Err(line_err(src, 1, name, "column missing from the header")),
+                        None => {
+                            return Err(line_err(&src_h, 1, name, "column missing from the header"))
+                        }
                     }
                 }
                 Ok(cols)
@@ -182,21 +206,33 @@ pub fn read_vectors<'a, R: BufRead + 'a>(
             };
             let mut index = 0u64;
             Box::new(rdr.into_records().map(move |rec| {
+                let src = src.as_str();
                 let rec = rec.map_err(|e| Error::Io(format!("{src}: {e}")))?;
                 let line = rec.position().map(|p| p.line() as usize).unwrap_or(0);
-                let get = |k: usize| rec.get(cols[k]).ok_or_else(|| line_err(src, line, CSV_FIELDS[k], "missing"));
+                let get = |k: usize| {
+                    rec.get(cols[k])
+                        .ok_or_else(|| line_err(src, line, CSV_FIELDS[k], "missing"))
+                };
                 let tag = if cols[0] == usize::MAX {
                     index
                 } else {
                     let t = get(0)?;
-                    t.parse::<u64>()
-                        .map_err(|_| line_err(src, line, "tag", format!("`{t}` is not a non-negative integer")))?
+                    t.parse::<u64>().map_err(|_| {
+                        line_err(
+                            src,
+                            line,
+                            "tag",
+                            format!("`{t}` is not a non-negative integer"),
+                        )
+                    })?
                 };
                 index += 1;
                 let mut f = [0.0; 14];
                 for k in 1..15 {
                     let s = get(k)?;
-                    f[k - 1] = parse_num(s).ok_or_else(|| line_err(src, line, CSV_FIELDS[k], format!("`{s}` is not a number")))?;
+                    f[k - 1] = parse_num(s).ok_or_else(|| {
+                        line_err(src, line, CSV_FIELDS[k], format!("`{s}` is not a number"))
+                    })?;
                 }
                 build(src, line, tag, &f)
             }))
@@ -226,7 +262,14 @@ pub fn write_header<W: Write>(w: &mut W, fmt: VecFormat) -> std::io::Result<()> 
 }
 
 /// Writes one result line.
-pub fn write_result<W: Write>(w: &mut W, fmt: VecFormat, tag: u64, hit: bool, t_entry: f64, t_exit: f64) -> std::io::Result<()> {
+pub fn write_result<W: Write>(
+    w: &mut W,
+    fmt: VecFormat,
+    tag: u64,
+    hit: bool,
+    t_entry: f64,
+    t_exit: f64,
+) -> std::io::Result<()> {
     match fmt {
         VecFormat::JsonLines => writeln!(
             w,
@@ -234,7 +277,13 @@ pub fn write_result<W: Write>(w: &mut W, fmt: VecFormat, tag: u64, hit: bool, t_
             num_text(t_entry, true),
             num_text(t_exit, true)
         ),
-        VecFormat::Csv => writeln!(w, "{tag},{},{},{}", u8::from(hit), num_text(t_entry, false), num_text(t_exit, false)),
+        VecFormat::Csv => writeln!(
+            w,
+            "{tag},{},{},{}",
+            u8::from(hit),
+            num_text(t_entry, false),
+            num_text(t_exit, false)
+        ),
     }
 }
 
@@ -316,14 +365,23 @@ mod tests {
 
     #[test]
     fn nan_in_csv_names_line_and_field() {
-        let text = format!("{}\n1,0,0,0,0,0,1,0,inf,0,0,0,1,nan,1\n", csv_vector_header());
-        let e = read(VecFormat::Csv, &text)[0].clone().unwrap_err().to_string();
+        let text = format!(
+            "{}\n1,0,0,0,0,0,1,0,inf,0,0,0,1,nan,1\n",
+            csv_vector_header()
+        );
+        let e = read(VecFormat::Csv, &text)[0]
+            .clone()
+            .unwrap_err()
+            .to_string();
         assert!(e.contains("test:2") && e.contains("box max.y"), "{e}");
     }
 
     #[test]
     fn missing_csv_column_is_named() {
-        let e = read(VecFormat::Csv, "tag,ox,oy\n1,2,3\n")[0].clone().unwrap_err().to_string();
+        let e = read(VecFormat::Csv, "tag,ox,oy\n1,2,3\n")[0]
+            .clone()
+            .unwrap_err()
+            .to_string();
         assert!(e.contains("oz") && e.contains("missing"), "{e}");
     }
 }

@@ -47,7 +47,10 @@ pub struct MulRound<const D: usize, const I: usize, const T: usize> {
 impl<const D: usize, const I: usize, const T: usize> MulRound<D, I, T> {
     /// A unit rounding up (`ceil = true`) or down, shifting right by `shift` bits.
     pub fn new(ceil: bool, shift: usize) -> Self {
-        assert!(D + I <= 63 && T <= 32 && shift < D + I, "MulRound<{D},{I},{T}> shift {shift}: widths out of range");
+        assert!(
+            D + I <= 63 && T <= 32 && shift < D + I,
+            "MulRound<{D},{I},{T}> shift {shift}: widths out of range"
+        );
         Self {
             a: Default::default(),
             m: Default::default(),
@@ -82,7 +85,12 @@ impl<const D: usize, const I: usize, const T: usize> MulRound<D, I, T> {
 
 impl<const D: usize, const I: usize, const T: usize> Logic for MulRound<D, I, T> {
     fn update(&mut self) {
-        let y = Self::eval(self.ceil.val(), self.shift.val().index(), self.a.val().to_u64(), self.m.val().to_u64());
+        let y = Self::eval(
+            self.ceil.val(),
+            self.shift.val().index(),
+            self.a.val().to_u64(),
+            self.m.val().to_u64(),
+        );
         self.y.next = bits::<T>(y);
     }
 

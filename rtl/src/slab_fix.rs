@@ -193,7 +193,6 @@ impl<const G: usize, const D: usize, const I: usize, const T: usize> SlabFix<G, 
             tag_q4: Default::default(),
         }
     }
-
 }
 
 /// The testbench-side API of a fixed slab tester of any width, so drivers need not spell the widths.
@@ -210,7 +209,9 @@ pub trait SlabFixIo: Block {
     fn output_word(&self, port: &str) -> Option<u64>;
 }
 
-impl<const G: usize, const D: usize, const I: usize, const T: usize> SlabFixIo for SlabFix<G, D, I, T> {
+impl<const G: usize, const D: usize, const I: usize, const T: usize> SlabFixIo
+    for SlabFix<G, D, I, T>
+{
     fn for_format(fmt: &FixFormat) -> Self {
         Self::new(fmt)
     }
@@ -279,9 +280,9 @@ impl<const G: usize, const D: usize, const I: usize, const T: usize> Logic for S
             self.exit_q2[i].clock.next = self.clock.val();
         }
         dff_setup!(
-            self, clock, t_min_q1, t_max_q1, empty_q1, valid_q1, tag_q1, t_min_q2, t_max_q2, empty_q2, valid_q2,
-            tag_q2, entry_a_q3, entry_b_q3, exit_a_q3, exit_b_q3, empty_q3, valid_q3, tag_q3, entry_q4, exit_q4,
-            hit_q4, valid_q4, tag_q4
+            self, clock, t_min_q1, t_max_q1, empty_q1, valid_q1, tag_q1, t_min_q2, t_max_q2,
+            empty_q2, valid_q2, tag_q2, entry_a_q3, entry_b_q3, exit_a_q3, exit_b_q3, empty_q3,
+            valid_q3, tag_q3, entry_q4, exit_q4, hit_q4, valid_q4, tag_q4
         );
 
         // Stage 1: distances in the direction of travel, empty-box flag.
@@ -330,22 +331,30 @@ impl<const G: usize, const D: usize, const I: usize, const T: usize> Logic for S
         self.tag_q2.d.next = self.tag_q1.q.val();
 
         // Stage 3: first level of the max (entry) and min (exit) trees.
-        if (self.t_min_q2.q.val() ^ self.sign_t.val()) > (self.entry_q2[0].q.val() ^ self.sign_t.val()) {
+        if (self.t_min_q2.q.val() ^ self.sign_t.val())
+            > (self.entry_q2[0].q.val() ^ self.sign_t.val())
+        {
             self.entry_a_q3.d.next = self.t_min_q2.q.val();
         } else {
             self.entry_a_q3.d.next = self.entry_q2[0].q.val();
         }
-        if (self.entry_q2[1].q.val() ^ self.sign_t.val()) > (self.entry_q2[2].q.val() ^ self.sign_t.val()) {
+        if (self.entry_q2[1].q.val() ^ self.sign_t.val())
+            > (self.entry_q2[2].q.val() ^ self.sign_t.val())
+        {
             self.entry_b_q3.d.next = self.entry_q2[1].q.val();
         } else {
             self.entry_b_q3.d.next = self.entry_q2[2].q.val();
         }
-        if (self.t_max_q2.q.val() ^ self.sign_t.val()) < (self.exit_q2[0].q.val() ^ self.sign_t.val()) {
+        if (self.t_max_q2.q.val() ^ self.sign_t.val())
+            < (self.exit_q2[0].q.val() ^ self.sign_t.val())
+        {
             self.exit_a_q3.d.next = self.t_max_q2.q.val();
         } else {
             self.exit_a_q3.d.next = self.exit_q2[0].q.val();
         }
-        if (self.exit_q2[1].q.val() ^ self.sign_t.val()) < (self.exit_q2[2].q.val() ^ self.sign_t.val()) {
+        if (self.exit_q2[1].q.val() ^ self.sign_t.val())
+            < (self.exit_q2[2].q.val() ^ self.sign_t.val())
+        {
             self.exit_b_q3.d.next = self.exit_q2[1].q.val();
         } else {
             self.exit_b_q3.d.next = self.exit_q2[2].q.val();
@@ -355,12 +364,16 @@ impl<const G: usize, const D: usize, const I: usize, const T: usize> Logic for S
         self.tag_q3.d.next = self.tag_q2.q.val();
 
         // Stage 4: final max/min and the hit decision.
-        if (self.entry_a_q3.q.val() ^ self.sign_t.val()) > (self.entry_b_q3.q.val() ^ self.sign_t.val()) {
+        if (self.entry_a_q3.q.val() ^ self.sign_t.val())
+            > (self.entry_b_q3.q.val() ^ self.sign_t.val())
+        {
             self.entry.next = self.entry_a_q3.q.val();
         } else {
             self.entry.next = self.entry_b_q3.q.val();
         }
-        if (self.exit_a_q3.q.val() ^ self.sign_t.val()) < (self.exit_b_q3.q.val() ^ self.sign_t.val()) {
+        if (self.exit_a_q3.q.val() ^ self.sign_t.val())
+            < (self.exit_b_q3.q.val() ^ self.sign_t.val())
+        {
             self.exit.next = self.exit_a_q3.q.val();
         } else {
             self.exit.next = self.exit_b_q3.q.val();

@@ -1,1 +1,146 @@
-fn main(){}
+//! `rtu`: the command-line front door of the ray-tracing-unit intersection model.
+//!
+//! With no subcommand it runs the main job on the built-in default scene (see [`main_job`]).
+
+mod bench;
+mod campaign_cmd;
+mod main_job;
+mod run_vectors;
+mod scene;
+
+use clap::{Parser, Subcommand};
+use std::path::PathBuf;
+use std::process::ExitCode;
+
+#[derive(Parser)]
+#[command(
+    name = "rtu",
+    version,
+    about = "Cycle-accurate RTL model of a ray-tracing unit's intersection testers"
+)]
+struct Cli {
+    /// Output folder for Verilog, VCD, reports and harness builds.
+    #[arg(long, global = true, default_value = "out")]
+    out: PathBuf,
+    #[command(subcommand)]
+    cmd: Option<Cmd>,
+}
+
+#[derive(Subcommand)]
+enum Cmd {
+    /// The main job: the default scene through the RTL slab tester of every preset width (the default).
+    Scene {
+        /// Image width in rays.
+        #[arg(long, default_value_t = 48)]
+        width: usize,
+        /// Image height in rays.
+        #[arg(long, default_value_t = 32)]
+        height: usize,
+    },
+    /// Write one Verilog file per block and preset configuration into <out>/verilog.
+    Export,
+    /// Run a file of rays and boxes (JSON lines or CSV) through a tester and write the results.
+    Run {
+        /// Input vectors (`.csv` is CSV, anything else JSON lines; `-` reads JSON lines from stdin).
+        input: PathBuf,
+        /// Where to write results (same format as the input); stdout when absent.
+        #[arg(long, short)]
+        output: Option<PathBuf>,
+        /// model, rtl or verilator.
+        #[arg(long, default_value = "model")]
+        engine: tb::engine::Engine,
+        /// Fixed-point format: b8, b12, b16 or G,I,FI,T,FT (rtl and verilator take the presets).
+        #[arg(long, default_value = "b16")]
+        format: String,
+        /// Scene bounds `x0,y0,z0,x1,y1,z1` for the grid; by default the bounds of the file's origins and boxes.
+        #[arg(long)]
+        bounds: Option<String>,
+    },
+    /// Write generated vectors (uniform, adversarial or mixed) to a file, for `run` or other tools.
+    Gen {
+        #[arg(long, default_value = "mixed")]
+        kind: golden::gen::GenKind,
+        #[arg(long, short, default_value_t = 1000)]
+        n: u64,
+        #[arg(long, default_value_t = 1)]
+        seed: u64,
+        /// Output file (`.csv` for CSV); stdout when absent.
+        #[arg(long, short)]
+        output: Option<PathBuf>,
+    },
+    /// Conservativeness against the exact oracle and cross-simulation in Verilator, at scale.
+    Campaign(campaign_cmd::Args),
+    /// Throughput of the model, the rust-hdl simulation and Verilator, measured in one run.
+    Bench(bench::Args),
+}
+
+fn main() -> ExitCode {
+    let cli = Cli::parse();
+    let r = match cli.cmd.unwrap_or(Cmd::Scene {
+        width: 48,
+        height: 32,
+    }) {
+        Cmd::Scene { width, height } => {
+            let scene = scene::room(width, height);
+            main_job::run(&scene, &cli.out)
+                .map(|(rows, _)| {
+                    println!("\n{}", main_job::table(&rows));
+                    println!(
+                        "wrote {}/report.md, {}/summary.csv, {}/verilog/, {}/vcd/",
+                        cli.out.display(),
+                        cli.out.display(),
+                        cli.out.display(),
+                        cli.out.display()
+                    );
+                    if rows
+                        .iter()
+                        .any(|r| r.violations > 0 || r.rtl_model_mismatches > 0)
+                    {
+                        Err(
+                            "conservativeness violations or RTL/model mismatches: see above"
+                                .to_string(),
+                        )
+                    } else {
+                        Ok(())
+                    }
+                })
+                .and_then(|x| x)
+        }
+        Cmd::Export => rtl::export::export_all(&cli.out.join("verilog"))
+            .map(|ps| {
+                for p in ps {
+                    println!("{}", p.display());
+                }
+            })
+            .map_err(|e| e.to_string()),
+        Cmd::Run {
+            input,
+            output,
+            engine,
+            format,
+            bounds,
+        } => run_vectors::run(
+            &input,
+            output.as_deref(),
+            engine,
+            &format,
+            bounds.as_deref(),
+            &cli.out,
+        ),
+        Cmd::Gen {
+            kind,
+            n,
+            seed,
+            output,
+        } => run_vectors::gen(kind, n, seed, output.as_deref()),
+        Cmd::Campaign(a) => campaign_cmd::run(&a, &cli.out),
+        Cmd::Bench(a) => bench::run(&a, &cli.out),
+    };
+    match r {
+        Ok(()) => ExitCode::SUCCESS,
+        Err(e) => {
+            eprintln!("rtu: {e}");
+            ExitCode::FAILURE
+        }
+    }
+}

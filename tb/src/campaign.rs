@@ -55,7 +55,13 @@ pub fn raw_fix_vector(fmt: &FixFormat, rng: &mut Pcg64) -> (FixRay, FixBox) {
 /// `n` quantised test vectors for the pipeline from a seeded stream: world vectors of `kind` quantised on
 /// the campaign grid, one in eight replaced by a raw-code vector, and (when `bubbles`) about one cycle in
 /// eight a bubble.
-pub fn slab_vectors(fmt: FixFormat, kind: GenKind, seed: u64, n: u64, bubbles: bool) -> impl Iterator<Item = SlabVec> + Send + 'static {
+pub fn slab_vectors(
+    fmt: FixFormat,
+    kind: GenKind,
+    seed: u64,
+    n: u64,
+    bubbles: bool,
+) -> impl Iterator<Item = SlabVec> + Send + 'static {
     let map = campaign_map(fmt);
     let mut gen = world_gen(&map, kind, seed);
     let mut rng = Pcg64::seed_from_u64(seed ^ 0x9e37_79b9_7f4a_7c15);

@@ -41,7 +41,11 @@ impl<I: Debug, O: Debug> std::fmt::Display for Mismatch<I, O> {
 /// Streams `tests` (`None` = a bubble cycle) through `dut`, compares each result with `model`, and checks
 /// that every result leaves exactly `latency()` clocks after its test entered, in order, with its tag.
 /// Returns the number of tests checked.
-pub fn run_checked<D, It, M>(dut: &mut D, tests: It, model: M) -> Result<usize, Mismatch<D::In, D::Out>>
+pub fn run_checked<D, It, M>(
+    dut: &mut D,
+    tests: It,
+    model: M,
+) -> Result<usize, Mismatch<D::In, D::Out>>
 where
     D: PipelinedDut,
     It: IntoIterator<Item = Option<D::In>>,
@@ -58,7 +62,10 @@ where
                      cycle: usize|
      -> Result<(), Mismatch<D::In, D::Out>> {
         // Outputs returned by step `cycle` belong to cycle `cycle + 1`.
-        let due = pending.front().map(|p| p.1 + lat == cycle + 1).unwrap_or(false);
+        let due = pending
+            .front()
+            .map(|p| p.1 + lat == cycle + 1)
+            .unwrap_or(false);
         match (out, due) {
             (None, false) => Ok(()),
             (Some((tag, got)), true) => {
@@ -82,7 +89,10 @@ where
             }
             (Some((tag, got)), false) => Err(Mismatch {
                 index: pending.front().map(|p| p.2).unwrap_or(usize::MAX),
-                why: format!("valid_out with tag {tag} in cycle {} when no result was due (latency {lat})", cycle + 1),
+                why: format!(
+                    "valid_out with tag {tag} in cycle {} when no result was due (latency {lat})",
+                    cycle + 1
+                ),
                 input: None,
                 expected: None,
                 got: Some(got),

@@ -2,6 +2,7 @@
 //!
 //! | module | what it does |
 //! | --- | --- |
+//! | [`engine`] | one streaming call over the model, the rust-hdl simulation and Verilator |
 //! | [`dut`] | the [`dut::PipelinedDut`] trait and a stream runner that checks results, tag order and latency |
 //! | [`rtl_sim`] | drives a rust-hdl block cycle by cycle (the fast direct loop), with optional VCD |
 //! | [`vcd_read`] | reads a VCD back and measures when `valid` leaves a block |
@@ -12,6 +13,7 @@
 
 pub mod campaign;
 pub mod dut;
+pub mod engine;
 pub mod rtl_sim;
 pub mod slab_fix_tb;
 pub mod strategies;
@@ -23,6 +25,8 @@ pub mod verilator;
 pub fn out_dir() -> std::path::PathBuf {
     match std::env::var_os("RTU_OUT") {
         Some(p) => p.into(),
-        None => std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("..").join("out"),
+        None => std::path::Path::new(env!("CARGO_MANIFEST_DIR"))
+            .join("..")
+            .join("out"),
     }
 }

@@ -26,7 +26,11 @@ impl<S: SlabFixIo> SlabFixRtl<S> {
     pub fn new(fmt: &FixFormat) -> Self {
         let mut uut = S::for_format(fmt);
         uut.connect_all();
-        SlabFixRtl { uut, vcd: None, cycle: 0 }
+        SlabFixRtl {
+            uut,
+            vcd: None,
+            cycle: 0,
+        }
     }
 
     /// The same, writing every signal of the block to a VCD file at `path`.

@@ -16,7 +16,11 @@ pub type SlabVec = Option<(FixRay, FixBox)>;
 /// The value of input port `port` (a Verilog name such as `ray_o_lo$1`) for one cycle.
 pub fn in_word(fmt: &FixFormat, port: &str, tag: u16, v: &SlabVec) -> Result<u64, String> {
     let (base, idx) = match port.split_once('$') {
-        Some((b, i)) => (b, i.parse::<usize>().map_err(|e| format!("port {port}: {e}"))?),
+        Some((b, i)) => (
+            b,
+            i.parse::<usize>()
+                .map_err(|e| format!("port {port}: {e}"))?,
+        ),
         None => (port, 0),
     };
     let (g, t) = (fmt.g as usize, fmt.t as usize);
@@ -68,21 +72,32 @@ where
     let mut tag = 0u16;
     let lat = rtl::SLAB_FIX_LATENCY as u64;
     // Flush the pipeline after the last vector.
-    let records = vectors.chain(std::iter::repeat(None).take(lat as usize + 1)).map(move |v| {
-        let t = tag;
-        if v.is_some() {
-            tag = tag.wrapping_add(1);
-        }
-        let rec = ports.iter().map(|p| in_word(&fmt, p, t, &v).expect("known port")).collect();
-        tx.send((t, v)).expect("consumer alive");
-        rec
-    });
-    let iv = harness.output_index("valid_out").ok_or("no valid_out port")?;
+    let records = vectors
+        .chain(std::iter::repeat_n(None, lat as usize + 1))
+        .map(move |v| {
+            let t = tag;
+            if v.is_some() {
+                tag = tag.wrapping_add(1);
+            }
+            let rec = ports
+                .iter()
+                .map(|p| in_word(&fmt, p, t, &v).expect("known port"))
+                .collect();
+            tx.send((t, v)).expect("consumer alive");
+            rec
+        });
+    let iv = harness
+        .output_index("valid_out")
+        .ok_or("no valid_out port")?;
     let it = harness.output_index("tag_out").ok_or("no tag_out port")?;
     let ih = harness.output_index("hit").ok_or("no hit port")?;
     let ien = harness.output_index("t_entry").ok_or("no t_entry port")?;
     let iex = harness.output_index("t_exit").ok_or("no t_exit port")?;
-    let mut rtl = if lockstep_rtl { Some(SlabFixRtl::<S>::new(&fmt)) } else { None };
+    let mut rtl = if lockstep_rtl {
+        Some(SlabFixRtl::<S>::new(&fmt))
+    } else {
+        None
+    };
     let mut pending: VecDeque<(u64, u16, FixRay, FixBox)> = VecDeque::new();
     let mut stats = XsimStats::default();
     let t = fmt.t as usize;

@@ -8,11 +8,23 @@ use golden::gen::GenKind;
 use proptest::prelude::*;
 
 fn grid(fmt: FixFormat) -> impl Strategy<Value = i64> {
-    prop_oneof![Just(fmt.gmin()), Just(fmt.gmax()), Just(0i64), Just(-1i64), fmt.gmin()..=fmt.gmax()]
+    prop_oneof![
+        Just(fmt.gmin()),
+        Just(fmt.gmax()),
+        Just(0i64),
+        Just(-1i64),
+        fmt.gmin()..=fmt.gmax()
+    ]
 }
 
 fn inv(fmt: FixFormat) -> impl Strategy<Value = u64> {
-    prop_oneof![Just(fmt.inv_inf()), Just(fmt.inv_inf() - 1), Just(0u64), Just(1u64), 0..=fmt.inv_inf()]
+    prop_oneof![
+        Just(fmt.inv_inf()),
+        Just(fmt.inv_inf() - 1),
+        Just(0u64),
+        Just(1u64),
+        0..=fmt.inv_inf()
+    ]
 }
 
 fn tcode(fmt: FixFormat) -> impl Strategy<Value = i64> {
@@ -28,9 +40,23 @@ fn tcode(fmt: FixFormat) -> impl Strategy<Value = i64> {
 
 /// Any quantised vector, field by field.
 pub fn raw_case(fmt: FixFormat) -> impl Strategy<Value = (FixRay, FixBox)> {
-    let axis = || (grid(fmt), grid(fmt), inv(fmt), inv(fmt), any::<bool>(), grid(fmt), grid(fmt));
+    let axis = || {
+        (
+            grid(fmt),
+            grid(fmt),
+            inv(fmt),
+            inv(fmt),
+            any::<bool>(),
+            grid(fmt),
+            grid(fmt),
+        )
+    };
     ([axis(), axis(), axis()], tcode(fmt), tcode(fmt)).prop_map(|(axes, t_min, t_max)| {
-        let mut r = FixRay { t_min, t_max, ..FixRay::default() };
+        let mut r = FixRay {
+            t_min,
+            t_max,
+            ..FixRay::default()
+        };
         let mut b = FixBox::default();
         for (a, (olo, ohi, mlo, mhi, neg, lo, hi)) in axes.into_iter().enumerate() {
             (r.o_lo[a], r.o_hi[a], r.m_lo[a], r.m_hi[a], r.neg[a]) = (olo, ohi, mlo, mhi, neg);
@@ -44,9 +70,16 @@ pub fn raw_case(fmt: FixFormat) -> impl Strategy<Value = (FixRay, FixBox)> {
 pub fn world_case(fmt: FixFormat) -> impl Strategy<Value = (FixRay, FixBox)> {
     (any::<u64>(), any::<bool>()).prop_map(move |(seed, adv)| {
         let map = campaign_map(fmt);
-        let kind = if adv { GenKind::Adversarial } else { GenKind::Uniform };
+        let kind = if adv {
+            GenKind::Adversarial
+        } else {
+            GenKind::Uniform
+        };
         let (r, b) = world_gen(&map, kind, seed).next().expect("endless");
-        (map.quantize_ray(&r).expect("fits"), map.quantize_box(&b).expect("fits"))
+        (
+            map.quantize_ray(&r).expect("fits"),
+            map.quantize_box(&b).expect("fits"),
+        )
     })
 }
 
@@ -62,7 +95,7 @@ pub fn slab_burst(fmt: FixFormat) -> impl Strategy<Value = Vec<SlabVec>> {
         for (case, bubbles) in v {
             out.push(Some(case));
             // Mostly back to back; sometimes one or two bubbles.
-            out.extend(std::iter::repeat(None).take(if bubbles == 2 { 1 } else { 0 }));
+            out.extend(std::iter::repeat_n(None, if bubbles == 2 { 1 } else { 0 }));
         }
         out
     })

@@ -18,7 +18,9 @@ pub struct Trace {
 pub fn read_trace(path: &Path, names: &[&str]) -> Result<Trace, String> {
     let f = std::fs::File::open(path).map_err(|e| format!("{}: {e}", path.display()))?;
     let mut parser = vcd::Parser::new(BufReader::new(f));
-    let header = parser.parse_header().map_err(|e| format!("{}: {e}", path.display()))?;
+    let header = parser
+        .parse_header()
+        .map_err(|e| format!("{}: {e}", path.display()))?;
     let mut ids: HashMap<vcd::IdCode, String> = HashMap::new();
     let mut want: Vec<&str> = names.to_vec();
     want.push("clock");
@@ -69,6 +71,9 @@ impl Trace {
 
     /// Clock rising edges in `(from, to]`.
     pub fn edges_between(&self, from: u64, to: u64) -> usize {
-        self.clock_edges.iter().filter(|&&t| t > from && t <= to).count()
+        self.clock_edges
+            .iter()
+            .filter(|&&t| t > from && t <= to)
+            .count()
     }
 }

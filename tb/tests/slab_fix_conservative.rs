@@ -11,7 +11,10 @@ const VECTORS: u64 = 100_000;
 fn conservative(fmt: FixFormat, kind: GenKind, seed: u64) {
     let st = conservative_campaign(fmt, kind, VECTORS, seed, 2, &|_| {});
     assert_eq!(st.vectors, VECTORS);
-    assert!(st.true_hits > 0, "no hits at all: the generator is degenerate");
+    assert!(
+        st.true_hits > 0,
+        "no hits at all: the generator is degenerate"
+    );
     assert_eq!(
         st.violation_count,
         0,

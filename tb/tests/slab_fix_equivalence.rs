@@ -17,7 +17,11 @@ use tb::strategies::slab_burst;
 const CASES: u32 = 10_000;
 
 /// Runs the equivalence property for block `S`; on failure writes `out/vcd/<name>_<hash>.vcd`.
-fn equivalence<S: SlabFixIo>(fmt: FixFormat, name: &str, model: impl Fn(&FixFormat, &SlabVecIn) -> SlabFixOut) {
+fn equivalence<S: SlabFixIo>(
+    fmt: FixFormat,
+    name: &str,
+    model: impl Fn(&FixFormat, &SlabVecIn) -> SlabFixOut,
+) {
     let dut = RefCell::new(SlabFixRtl::<S>::new(&fmt));
     let mut runner = TestRunner::new(Config {
         cases: CASES,
@@ -31,7 +35,10 @@ fn equivalence<S: SlabFixIo>(fmt: FixFormat, name: &str, model: impl Fn(&FixForm
     });
     if let Err(TestError::Fail(why, burst)) = result {
         let path = write_failure_vcd::<S>(fmt, name, &burst);
-        panic!("{name}: RTL differs from the model on the shrunk burst {burst:?}\n{why}\nwaveform: {}", path.display());
+        panic!(
+            "{name}: RTL differs from the model on the shrunk burst {burst:?}\n{why}\nwaveform: {}",
+            path.display()
+        );
     } else if let Err(e) = result {
         panic!("{name}: {e}");
     }
@@ -39,10 +46,16 @@ fn equivalence<S: SlabFixIo>(fmt: FixFormat, name: &str, model: impl Fn(&FixForm
 
 type SlabVecIn = (golden::fixed::FixRay, golden::fixed::FixBox);
 
-fn write_failure_vcd<S: SlabFixIo>(fmt: FixFormat, name: &str, burst: &[SlabVec]) -> std::path::PathBuf {
+fn write_failure_vcd<S: SlabFixIo>(
+    fmt: FixFormat,
+    name: &str,
+    burst: &[SlabVec],
+) -> std::path::PathBuf {
     let mut h = std::collections::hash_map::DefaultHasher::new();
     format!("{burst:?}").hash(&mut h);
-    let path = tb::out_dir().join("vcd").join(format!("{name}_{:08x}.vcd", h.finish() as u32));
+    let path = tb::out_dir()
+        .join("vcd")
+        .join(format!("{name}_{:08x}.vcd", h.finish() as u32));
     let mut dut = SlabFixRtl::<S>::with_vcd(&fmt, &path).expect("write VCD");
     let _ = run_checked(&mut dut, burst.to_vec(), |v| slab_fix(&fmt, &v.0, &v.1));
     path
@@ -50,17 +63,23 @@ fn write_failure_vcd<S: SlabFixIo>(fmt: FixFormat, name: &str, burst: &[SlabVec]
 
 #[test]
 fn slab_fix_b8_matches_model() {
-    equivalence::<rtl::SlabFixB8>(FixFormat::b8(), "slab_fix_b8", |f, v| slab_fix(f, &v.0, &v.1));
+    equivalence::<rtl::SlabFixB8>(FixFormat::b8(), "slab_fix_b8", |f, v| {
+        slab_fix(f, &v.0, &v.1)
+    });
 }
 
 #[test]
 fn slab_fix_b12_matches_model() {
-    equivalence::<rtl::SlabFixB12>(FixFormat::b12(), "slab_fix_b12", |f, v| slab_fix(f, &v.0, &v.1));
+    equivalence::<rtl::SlabFixB12>(FixFormat::b12(), "slab_fix_b12", |f, v| {
+        slab_fix(f, &v.0, &v.1)
+    });
 }
 
 #[test]
 fn slab_fix_b16_matches_model() {
-    equivalence::<rtl::SlabFixB16>(FixFormat::b16(), "slab_fix_b16", |f, v| slab_fix(f, &v.0, &v.1));
+    equivalence::<rtl::SlabFixB16>(FixFormat::b16(), "slab_fix_b16", |f, v| {
+        slab_fix(f, &v.0, &v.1)
+    });
 }
 
 /// The property can fail: against a model with one bit wrong, the runner reports a shrunk case and a VCD.
@@ -72,7 +91,9 @@ fn a_wrong_model_is_caught_and_leaves_a_vcd() {
         o.t_exit ^= 1;
         o
     };
-    let r = std::panic::catch_unwind(|| equivalence::<rtl::SlabFixB8>(fmt, "slab_fix_b8_wrong_model", wrong));
+    let r = std::panic::catch_unwind(|| {
+        equivalence::<rtl::SlabFixB8>(fmt, "slab_fix_b8_wrong_model", wrong)
+    });
     let msg = match r {
         Ok(()) => panic!("a model with a flipped t_exit bit passed"),
         Err(e) => e.downcast_ref::<String>().cloned().unwrap_or_default(),

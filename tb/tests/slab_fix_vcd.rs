@@ -18,13 +18,14 @@ fn valid_leaves_latency_clocks_after_it_enters() {
     // Three isolated tests (each followed by 6 bubbles), then three back to back.
     let mut stream = vec![];
     for t in &tests[..3] {
-        stream.push(t.clone());
-        stream.extend(std::iter::repeat(None).take(6));
+        stream.push(*t);
+        stream.extend(std::iter::repeat_n(None, 6));
     }
     stream.extend(tests[3..].iter().cloned());
     {
         let mut dut = SlabFixRtl::<rtl::SlabFixB12>::with_vcd(&fmt, &path).unwrap();
-        let n = run_checked(&mut dut, stream, |v| slab_fix(&fmt, &v.0, &v.1)).unwrap_or_else(|e| panic!("{e}"));
+        let n = run_checked(&mut dut, stream, |v| slab_fix(&fmt, &v.0, &v.1))
+            .unwrap_or_else(|e| panic!("{e}"));
         assert_eq!(n, 6);
     }
     let trace = read_trace(&path, &["valid_in", "valid_out"]).unwrap();
@@ -34,6 +35,10 @@ fn valid_leaves_latency_clocks_after_it_enters() {
     assert_eq!(ins.len(), 4, "valid_in rises at {ins:?}");
     assert_eq!(outs.len(), 4, "valid_out rises at {outs:?}");
     for (i, o) in ins.iter().zip(&outs) {
-        assert_eq!(trace.edges_between(*i, *o), rtl::SLAB_FIX_LATENCY, "valid_in at {i}, valid_out at {o}");
+        assert_eq!(
+            trace.edges_between(*i, *o),
+            rtl::SLAB_FIX_LATENCY,
+            "valid_in at {i}, valid_out at {o}"
+        );
     }
 }

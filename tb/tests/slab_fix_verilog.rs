@@ -26,18 +26,35 @@ fn run(tool: &str, args: &[&str]) -> (bool, String) {
         .args(args)
         .output()
         .unwrap_or_else(|e| panic!("cannot run {tool} ({e}); scripts/test installs it"));
-    let text = format!("{}{}", String::from_utf8_lossy(&out.stdout), String::from_utf8_lossy(&out.stderr));
+    let text = format!(
+        "{}{}",
+        String::from_utf8_lossy(&out.stdout),
+        String::from_utf8_lossy(&out.stderr)
+    );
     (out.status.success(), text)
 }
 
 #[test]
 fn exported_verilog_is_lint_clean() {
-    let waiver = concat!(env!("CARGO_MANIFEST_DIR"), "/../rtl/lint/verilator_waiver.vlt");
+    let waiver = concat!(
+        env!("CARGO_MANIFEST_DIR"),
+        "/../rtl/lint/verilator_waiver.vlt"
+    );
     for fmt in FixFormat::presets() {
         let (v, path) = export(&fmt);
-        assert!(v.contains(&format!("module {}(", slab_fix_module(&fmt))), "module name carries the format");
-        let (ok, text) = run("verilator", &["--lint-only", "-Wall", waiver, path.to_str().unwrap()]);
-        assert!(ok && !text.contains("%Warning") && !text.contains("%Error"), "{}:\n{text}", path.display());
+        assert!(
+            v.contains(&format!("module {}(", slab_fix_module(&fmt))),
+            "module name carries the format"
+        );
+        let (ok, text) = run(
+            "verilator",
+            &["--lint-only", "-Wall", waiver, path.to_str().unwrap()],
+        );
+        assert!(
+            ok && !text.contains("%Warning") && !text.contains("%Error"),
+            "{}:\n{text}",
+            path.display()
+        );
     }
 }
 
@@ -46,7 +63,10 @@ fn icarus_accepts_exported_verilog() {
     for fmt in FixFormat::presets() {
         let (_, path) = export(&fmt);
         let obj = path.with_extension("vvp");
-        let (ok, text) = run("iverilog", &["-o", obj.to_str().unwrap(), path.to_str().unwrap()]);
+        let (ok, text) = run(
+            "iverilog",
+            &["-o", obj.to_str().unwrap(), path.to_str().unwrap()],
+        );
         assert!(ok, "iverilog rejects {}:\n{text}", path.display());
     }
 }
@@ -58,9 +78,13 @@ fn cross_simulate<S: SlabFixIo>(fmt: FixFormat, seed: u64) {
     let h = tb::verilator::build(&v, &slab_fix_module(&fmt), &tb::out_dir().join("verilator"))
         .unwrap_or_else(|e| panic!("{e}"));
     let vectors = slab_vectors(fmt, GenKind::Mixed, seed, XSIM_VECTORS, true);
-    let stats = xsim::<S, _>(fmt, &h, vectors, true, |_| {}).unwrap_or_else(|e| panic!("{}: {e}", fmt.name()));
+    let stats = xsim::<S, _>(fmt, &h, vectors, true, |_| {})
+        .unwrap_or_else(|e| panic!("{}: {e}", fmt.name()));
     assert_eq!(stats.tests, XSIM_VECTORS);
-    assert!(stats.hits > 0 && stats.hits < stats.tests, "degenerate vectors: {stats:?}");
+    assert!(
+        stats.hits > 0 && stats.hits < stats.tests,
+        "degenerate vectors: {stats:?}"
+    );
     assert!(stats.cycles > stats.tests, "bubbles were driven: {stats:?}");
 }
 
