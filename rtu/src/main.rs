@@ -55,6 +55,9 @@ enum Cmd {
         /// Scene bounds `x0,y0,z0,x1,y1,z1` for the grid; by default the bounds of the file's origins and boxes.
         #[arg(long)]
         bounds: Option<String>,
+        /// Write a waveform of the run here (rtl engine).
+        #[arg(long)]
+        vcd: Option<PathBuf>,
     },
     /// Write generated vectors (uniform, adversarial or mixed) to a file, for `run` or other tools.
     Gen {
@@ -119,12 +122,14 @@ fn main() -> ExitCode {
             engine,
             format,
             bounds,
+            vcd,
         } => run_vectors::run(
             &input,
             output.as_deref(),
             engine,
             &format,
             bounds.as_deref(),
+            vcd.as_deref(),
             &cli.out,
         ),
         Cmd::Gen {

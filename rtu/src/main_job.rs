@@ -106,13 +106,20 @@ pub fn run(scene: &Scene, out: &Path) -> Result<(Vec<Row>, String), String> {
             (0..n).map(move |i| (i, rays[i / nb], boxes[i % nb]))
         };
         let mut model = vec![SlabFixOut::default(); n];
-        run_engine(Engine::Model, fmt, tests(), Path::new(""), |i, _, o| {
-            model[i] = o;
-            Ok(())
-        })?;
+        run_engine(
+            Engine::Model,
+            fmt,
+            tests(),
+            Path::new(""),
+            None,
+            |i, _, o| {
+                model[i] = o;
+                Ok(())
+            },
+        )?;
         let t = Instant::now();
         let mut rtl = vec![SlabFixOut::default(); n];
-        run_engine(Engine::Rtl, fmt, tests(), Path::new(""), |i, _, o| {
+        run_engine(Engine::Rtl, fmt, tests(), Path::new(""), None, |i, _, o| {
             rtl[i] = o;
             Ok(())
         })?;

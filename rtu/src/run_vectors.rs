@@ -61,12 +61,14 @@ fn vectors_of(
 }
 
 /// Runs a vector file through `engine` and writes results in the input's format.
+#[allow(clippy::too_many_arguments)]
 pub fn run(
     input: &Path,
     output: Option<&Path>,
     engine: Engine,
     format: &str,
     bounds: Option<&str>,
+    vcd: Option<&Path>,
     out: &Path,
 ) -> Result<(), String> {
     let fmt = FixFormat::parse(format).map_err(|e| e.to_string())?;
@@ -126,17 +128,24 @@ pub fn run(
         None => Box::new(BufWriter::new(std::io::stdout())),
     };
     write_header(&mut w, vfmt).map_err(|e| e.to_string())?;
-    let n = run_engine(engine, fmt, tests, &out.join("verilator"), |tag, r, o| {
-        write_result(
-            &mut w,
-            vfmt,
-            tag,
-            o.hit,
-            r.t_world_f64(&fmt, o.t_entry),
-            r.t_world_f64(&fmt, o.t_exit),
-        )
-        .map_err(|e| e.to_string())
-    })?;
+    let n = run_engine(
+        engine,
+        fmt,
+        tests,
+        &out.join("verilator"),
+        vcd,
+        |tag, r, o| {
+            write_result(
+                &mut w,
+                vfmt,
+                tag,
+                o.hit,
+                r.t_world_f64(&fmt, o.t_entry),
+                r.t_world_f64(&fmt, o.t_exit),
+            )
+            .map_err(|e| e.to_string())
+        },
+    )?;
     w.flush().map_err(|e| e.to_string())?;
     if let Some(e) = failure.lock().unwrap().take() {
         return Err(e);

@@ -39,12 +39,14 @@ impl std::str::FromStr for Engine {
 pub type Keyed<K> = (K, FixRay, FixBox);
 
 /// Runs `tests` on `engine`, calling `sink(key, ray, result)` for each in input order; `verilator_dir` holds
-/// harness builds. Returns the number of tests run.
+/// harness builds; `vcd`, for the rust-hdl engine, is where to write a waveform of the whole run.
+/// Returns the number of tests run.
 pub fn run_engine<K, It, F>(
     engine: Engine,
     fmt: FixFormat,
     tests: It,
     verilator_dir: &Path,
+    vcd: Option<&Path>,
     mut sink: F,
 ) -> Result<u64, String>
 where
@@ -53,6 +55,9 @@ where
     F: FnMut(K, &FixRay, SlabFixOut) -> Result<(), String>,
 {
     match engine {
+        _ if vcd.is_some() && engine != Engine::Rtl => {
+            Err("a waveform (--vcd) needs the rtl engine".into())
+        }
         Engine::Model => {
             let mut n = 0;
             for (k, r, b) in tests {
@@ -61,7 +66,9 @@ where
             }
             Ok(n)
         }
-        Engine::Rtl => rtl::with_slab_fix!(&fmt, S, { run_rtl::<S, K, It, F>(fmt, tests, sink) })?,
+        Engine::Rtl => {
+            rtl::with_slab_fix!(&fmt, S, { run_rtl::<S, K, It, F>(fmt, tests, vcd, sink) })?
+        }
         Engine::Verilator => {
             let v = slab_fix_verilog(&fmt)?;
             let h = crate::verilator::build(&v, &slab_fix_module(&fmt), verilator_dir)?;
@@ -112,13 +119,23 @@ where
     }
 }
 
-fn run_rtl<S, K, It, F>(fmt: FixFormat, tests: It, mut sink: F) -> Result<u64, String>
+fn run_rtl<S, K, It, F>(
+    fmt: FixFormat,
+    tests: It,
+    vcd: Option<&Path>,
+    mut sink: F,
+) -> Result<u64, String>
 where
     S: SlabFixIo,
     It: Iterator<Item = Keyed<K>>,
     F: FnMut(K, &FixRay, SlabFixOut) -> Result<(), String>,
 {
-    let mut dut = SlabFixRtl::<S>::new(&fmt);
+    let mut dut = match vcd {
+        Some(p) => {
+            SlabFixRtl::<S>::with_vcd(&fmt, p).map_err(|e| format!("{}: {e}", p.display()))?
+        }
+        None => SlabFixRtl::<S>::new(&fmt),
+    };
     let mut waiting: VecDeque<(K, FixRay)> = VecDeque::new();
     let mut n = 0u64;
     let mut tag = 0u16;

@@ -43,6 +43,25 @@ pub fn in_word(fmt: &FixFormat, port: &str, tag: u16, v: &SlabVec) -> Result<u64
     })
 }
 
+/// Cycles replayed into the VCD written when a cross-simulation cycle fails.
+pub const XSIM_VCD_WINDOW: usize = 32;
+
+/// Drives `cycles` (tag and vector, or bubble) through block `S` writing a VCD at `path`.
+pub fn replay_vcd<S: SlabFixIo>(
+    fmt: FixFormat,
+    cycles: &VecDeque<(u16, SlabVec)>,
+    path: &std::path::Path,
+) -> std::io::Result<()> {
+    let mut sim = SlabFixRtl::<S>::with_vcd(&fmt, path)?;
+    for (tag, v) in cycles {
+        sim.step(v.as_ref().map(|x| (*tag, x)));
+    }
+    for _ in 0..=sim.latency() {
+        sim.step(None);
+    }
+    Ok(())
+}
+
 /// What a cross-simulation run covered.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
 pub struct XsimStats {
@@ -101,8 +120,16 @@ where
     let mut pending: VecDeque<(u64, u16, FixRay, FixBox)> = VecDeque::new();
     let mut stats = XsimStats::default();
     let t = fmt.t as usize;
+    // The last cycles' inputs, replayed into a VCD when a cycle fails.
+    let mut recent: VecDeque<(u16, SlabVec)> = VecDeque::new();
+    let mut last_cycle = 0u64;
     let cycles = harness.stream(records, |cycle, out| {
         let (tg, v) = rx.recv().map_err(|_| "producer ended early".to_string())?;
+        last_cycle = cycle;
+        recent.push_back((tg, v));
+        if recent.len() > XSIM_VCD_WINDOW {
+            recent.pop_front();
+        }
         if let Some((r, b)) = v {
             pending.push_back((cycle, tg, r, b));
         }
@@ -151,6 +178,14 @@ where
             progress(stats.tests);
         }
         Ok(())
+    })
+    .map_err(|e| {
+        let name = format!("xsim_{}_cycle{}.vcd", fmt.name(), last_cycle + 1);
+        let path = crate::out_dir().join("vcd").join(name);
+        match replay_vcd::<S>(fmt, &recent, &path) {
+            Ok(()) => format!("{e}\n  waveform of the last {} cycles (rust-hdl): {}", recent.len(), path.display()),
+            Err(w) => format!("{e}\n  (no waveform: {w})"),
+        }
     })?;
     stats.cycles = cycles;
     if !pending.is_empty() {

@@ -102,3 +102,25 @@ fn verilator_matches_rtl_and_model_b12() {
 fn verilator_matches_rtl_and_model_b16() {
     cross_simulate::<rtl::SlabFixB16>(FixFormat::b16(), 3);
 }
+
+/// Cross-simulation can fail: driving the b8 Verilog as if it were the b12 tester is caught within a few
+/// cycles, and the failure leaves a waveform of the last cycles.
+#[test]
+fn a_wrong_verilog_is_caught_and_leaves_a_vcd() {
+    let (v, _) = export(&FixFormat::b8());
+    let h = tb::verilator::build(
+        &v,
+        &slab_fix_module(&FixFormat::b8()),
+        &tb::out_dir().join("verilator"),
+    )
+    .unwrap_or_else(|e| panic!("{e}"));
+    let b12 = FixFormat::b12();
+    let vectors = slab_vectors(b12, GenKind::Mixed, 4, 10_000, true);
+    let err = xsim::<rtl::SlabFixB12, _>(b12, &h, vectors, true, |_| {})
+        .expect_err("b8 Verilog passed as b12");
+    let vcd = err.rsplit("(rust-hdl): ").next().unwrap().trim();
+    assert!(
+        std::path::Path::new(vcd).exists(),
+        "no VCD at `{vcd}`: {err}"
+    );
+}
