@@ -16,6 +16,8 @@ pub mod check;
 pub mod error;
 pub mod exact;
 pub mod fixed;
+pub mod float;
+pub mod floatcheck;
 pub mod gen;
 pub mod geom;
 pub mod slab_fix;

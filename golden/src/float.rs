@@ -1,0 +1,525 @@
+//! Bit-accurate model of a binary floating-point format with `E` exponent bits and `M` fraction bits:
+//! encode and decode, add and subtract, multiply, compare, minimum and maximum, under round-to-nearest-
+//! even and the two directed modes.
+//!
+//! The layout and semantics are IEEE 754's binary formats (sign, biased exponent, fraction; exponent all
+//! ones for infinities and NaN; exponent zero for zeros and subnormals), so E8M23 is binary32, E5M10 is
+//! binary16 and E8M7 is bfloat16.
+//!
+//! **Subnormals are supported**, not flushed. Flushing a tiny result to zero would break the directed
+//! modes' guarantee (a round-up of a tiny positive value must not give zero), so support is the choice
+//! that keeps the datapath conservative, and it is what `half` and native `f32` do.
+//!
+//! Every result is the exact result rounded once (the operands are exact, the sum and product are formed
+//! exactly in up to 128 bits, or with a sticky bit when the operands' exponents are more than 100 apart).
+//! NaN results are the canonical quiet NaN (exponent all ones, fraction MSB set, sign clear).
+//!
+//! Directed rounding is the float datapath's tool for conservativeness (ARCHITECTURE.md): lower bounds
+//! round toward -inf, upper bounds toward +inf.
+
+use crate::error::Error;
+
+/// A rounding mode.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+pub enum Rounding {
+    /// Round to nearest, ties to even.
+    NearestEven,
+    /// Toward -inf.
+    Down,
+    /// Toward +inf.
+    Up,
+}
+
+impl Rounding {
+    pub const ALL: [Rounding; 3] = [Rounding::NearestEven, Rounding::Down, Rounding::Up];
+}
+
+/// A binary floating-point format; values are carried as the low `1 + E + M` bits of a `u32`.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+pub struct FloatFormat {
+    /// Exponent bits `E`.
+    pub e: u32,
+    /// Fraction (stored mantissa) bits `M`.
+    pub m: u32,
+}
+
+/// What a bit pattern is.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Class {
+    Zero,
+    Subnormal,
+    Normal,
+    Inf,
+    NaN,
+}
+
+impl FloatFormat {
+    /// `2 <= E <= 8`, `1 <= M <= 23`: at most binary32, so every value is exactly an `f64` and every
+    /// product of two significands fits in 48 bits.
+    pub fn new(e: u32, m: u32) -> Result<Self, Error> {
+        if !(2..=8).contains(&e) {
+            return Err(Error::BadFormat {
+                param: "E (exponent bits)",
+                value: e as i64,
+                why: "must be in 2..=8".into(),
+            });
+        }
+        if !(1..=23).contains(&m) {
+            return Err(Error::BadFormat {
+                param: "M (fraction bits)",
+                value: m as i64,
+                why: "must be in 1..=23".into(),
+            });
+        }
+        Ok(FloatFormat { e, m })
+    }
+    /// binary32.
+    pub const FP32: FloatFormat = FloatFormat { e: 8, m: 23 };
+    /// E8M15: binary32's range, 16 bits of precision.
+    pub const E8M15: FloatFormat = FloatFormat { e: 8, m: 15 };
+    /// bfloat16.
+    pub const BF16: FloatFormat = FloatFormat { e: 8, m: 7 };
+    /// binary16.
+    pub const FP16: FloatFormat = FloatFormat { e: 5, m: 10 };
+    /// An 8-bit format (E4M3 with IEEE infinities), small enough to test exhaustively.
+    pub const E4M3: FloatFormat = FloatFormat { e: 4, m: 3 };
+
+    /// Name used in module names and reports, e.g. `e8m23`.
+    pub fn name(&self) -> String {
+        format!("e{}m{}", self.e, self.m)
+    }
+    /// Total width `1 + E + M`.
+    pub fn width(&self) -> u32 {
+        1 + self.e + self.m
+    }
+    /// Exponent bias `2^(E-1) - 1`.
+    pub fn bias(&self) -> i32 {
+        (1 << (self.e - 1)) - 1
+    }
+    /// Smallest normal exponent.
+    pub fn emin(&self) -> i32 {
+        1 - self.bias()
+    }
+    fn exp_all_ones(&self) -> u32 {
+        (1 << self.e) - 1
+    }
+    /// Mask of all the format's bits.
+    pub fn mask(&self) -> u32 {
+        if self.width() == 32 {
+            u32::MAX
+        } else {
+            (1 << self.width()) - 1
+        }
+    }
+    /// The sign bit.
+    pub fn sign_bit(&self) -> u32 {
+        1 << (self.e + self.m)
+    }
+    fn pack(&self, sign: bool, bexp: u32, frac: u32) -> u32 {
+        (u32::from(sign) << (self.e + self.m)) | (bexp << self.m) | frac
+    }
+    fn fields(&self, x: u32) -> (bool, u32, u32) {
+        (
+            x & self.sign_bit() != 0,
+            (x >> self.m) & self.exp_all_ones(),
+            x & ((1 << self.m) - 1),
+        )
+    }
+    /// `+-0`.
+    pub fn zero(&self, sign: bool) -> u32 {
+        self.pack(sign, 0, 0)
+    }
+    /// `+-inf`.
+    pub fn inf(&self, sign: bool) -> u32 {
+        self.pack(sign, self.exp_all_ones(), 0)
+    }
+    /// The canonical quiet NaN.
+    pub fn nan(&self) -> u32 {
+        self.pack(false, self.exp_all_ones(), 1 << (self.m - 1))
+    }
+    /// The largest finite magnitude, with a sign.
+    pub fn max_finite(&self, sign: bool) -> u32 {
+        self.pack(sign, self.exp_all_ones() - 1, (1 << self.m) - 1)
+    }
+    /// Classifies a bit pattern.
+    pub fn class(&self, x: u32) -> Class {
+        let (_, e, f) = self.fields(x);
+        match (e, f) {
+            (0, 0) => Class::Zero,
+            (0, _) => Class::Subnormal,
+            (e, 0) if e == self.exp_all_ones() => Class::Inf,
+            (e, _) if e == self.exp_all_ones() => Class::NaN,
+            _ => Class::Normal,
+        }
+    }
+    pub fn is_nan(&self, x: u32) -> bool {
+        self.class(x) == Class::NaN
+    }
+    /// Sign bit set.
+    pub fn is_negative(&self, x: u32) -> bool {
+        x & self.sign_bit() != 0
+    }
+
+    /// `(sign, significand, exponent)` of a finite value: `value = +-sig * 2^exp`.
+    pub fn decode(&self, x: u32) -> (bool, u64, i32) {
+        let (s, e, f) = self.fields(x);
+        if e == 0 {
+            (s, f as u64, self.emin() - self.m as i32)
+        } else {
+            (
+                s,
+                (f | (1 << self.m)) as u64,
+                e as i32 - self.bias() - self.m as i32,
+            )
+        }
+    }
+
+    /// The exact value as an f64 (every value of these formats is one).
+    pub fn to_f64(&self, x: u32) -> f64 {
+        match self.class(x) {
+            Class::NaN => f64::NAN,
+            Class::Inf => {
+                if self.is_negative(x) {
+                    f64::NEG_INFINITY
+                } else {
+                    f64::INFINITY
+                }
+            }
+            _ => {
+                let (s, sig, e) = self.decode(x);
+                let v = crate::fixed::ldexp(sig as f64, e);
+                if s {
+                    -v
+                } else {
+                    v
+                }
+            }
+        }
+    }
+
+    /// Rounds `+-(sig + d) * 2^exp` into the format, where `d` is 0 when `!sticky` and strictly between
+    /// 0 and 1 otherwise. A sticky value must come with at least two bits below the result's last place.
+    /// `sig == 0 && !sticky` is not allowed here (exact zeros have their own sign rules).
+    fn round_pack(&self, sign: bool, sig: u128, exp: i32, sticky: bool, mode: Rounding) -> u32 {
+        debug_assert!(sig != 0 || sticky);
+        let m = self.m as i32;
+        let nb = 128 - sig.leading_zeros() as i32; // bit length (0 when sig == 0)
+        let lead = exp + nb - 1;
+        let q = (lead - m).max(self.emin() - m); // exponent of the result's last place
+        let shift = q - exp;
+        let (mut kept, above_half, at_half, inexact) = if shift <= 0 {
+            debug_assert!(!sticky, "a sticky value needs guard bits");
+            (sig << (-shift) as u32, false, false, false)
+        } else if shift >= 128 || shift > nb + 1 {
+            // Everything is below half of the last place.
+            (0, false, false, true)
+        } else {
+            let s = shift as u32;
+            let rem = sig & ((1u128 << s) - 1);
+            let half = 1u128 << (s - 1);
+            (
+                sig >> s,
+                rem > half || (rem == half && sticky),
+                rem == half && !sticky,
+                rem != 0 || sticky,
+            )
+        };
+        let up = match mode {
+            Rounding::NearestEven => above_half || (at_half && kept & 1 == 1),
+            Rounding::Down => sign && inexact,
+            Rounding::Up => !sign && inexact,
+        };
+        let mut q = q;
+        kept += u128::from(up);
+        if kept == 1u128 << (m + 1) {
+            kept >>= 1;
+            q += 1;
+        }
+        if kept >= 1u128 << m {
+            let bexp = q + m + self.bias();
+            if bexp >= self.exp_all_ones() as i32 {
+                return self.overflow(sign, mode);
+            }
+            self.pack(sign, bexp as u32, (kept - (1u128 << m)) as u32)
+        } else {
+            self.pack(sign, 0, kept as u32)
+        }
+    }
+
+    fn overflow(&self, sign: bool, mode: Rounding) -> u32 {
+        match (mode, sign) {
+            (Rounding::NearestEven, s) => self.inf(s),
+            (Rounding::Down, false) | (Rounding::Up, true) => self.max_finite(sign),
+            (Rounding::Down, true) | (Rounding::Up, false) => self.inf(sign),
+        }
+    }
+
+    /// Rounds an f64 into the format (NaN gives the canonical NaN).
+    pub fn from_f64(&self, x: f64, mode: Rounding) -> u32 {
+        if x.is_nan() {
+            return self.nan();
+        }
+        if x.is_infinite() {
+            return self.inf(x < 0.0);
+        }
+        if x == 0.0 {
+            return self.zero(x.is_sign_negative());
+        }
+        let bits = x.to_bits();
+        let bexp = ((bits >> 52) & 0x7ff) as i32;
+        let frac = bits & ((1u64 << 52) - 1);
+        let (sig, exp) = if bexp == 0 {
+            (frac, -1074)
+        } else {
+            (frac | (1 << 52), bexp - 1075)
+        };
+        // Two guard bits make a sticky-free, exact input acceptable to round_pack.
+        self.round_pack(x < 0.0, (sig as u128) << 2, exp - 2, false, mode)
+    }
+
+    /// `a + b`, rounded.
+    pub fn add(&self, a: u32, b: u32, mode: Rounding) -> u32 {
+        let (ca, cb) = (self.class(a), self.class(b));
+        let (sa, sb) = (self.is_negative(a), self.is_negative(b));
+        match (ca, cb) {
+            (Class::NaN, _) | (_, Class::NaN) => return self.nan(),
+            (Class::Inf, Class::Inf) => return if sa == sb { a } else { self.nan() },
+            (Class::Inf, _) => return a,
+            (_, Class::Inf) => return b,
+            (Class::Zero, Class::Zero) => {
+                return if sa == sb {
+                    a
+                } else {
+                    self.zero(mode == Rounding::Down)
+                };
+            }
+            (Class::Zero, _) => return b,
+            (_, Class::Zero) => return a,
+            _ => {}
+        }
+        let (sa, siga, ea) = self.decode(a);
+        let (sb, sigb, eb) = self.decode(b);
+        // Make `x` the operand with the larger exponent.
+        let ((sx, sigx, ex), (sy, sigy, ey)) = if ea >= eb {
+            ((sa, siga, ea), (sb, sigb, eb))
+        } else {
+            ((sb, sigb, eb), (sa, siga, ea))
+        };
+        let d = ex - ey;
+        if d <= 100 {
+            let x = (sigx as u128) << d as u32;
+            let y = sigy as u128;
+            if sx == sy {
+                self.round_pack(sx, x + y, ey, false, mode)
+            } else if x == y {
+                self.zero(mode == Rounding::Down)
+            } else if x > y {
+                self.round_pack(sx, x - y, ey, false, mode)
+            } else {
+                self.round_pack(sy, y - x, ey, false, mode)
+            }
+        } else {
+            // |y| < 2^(ex - 100) is far below x's last place: it only decides rounding, as a sticky bit.
+            let x = (sigx as u128) << 3;
+            let sig = if sx == sy { x } else { x - 1 };
+            self.round_pack(sx, sig, ex - 3, true, mode)
+        }
+    }
+
+    /// `a - b`, rounded.
+    pub fn sub(&self, a: u32, b: u32, mode: Rounding) -> u32 {
+        let nb = if self.is_nan(b) {
+            b
+        } else {
+            b ^ self.sign_bit()
+        };
+        self.add(a, nb, mode)
+    }
+
+    /// `a * b`, rounded.
+    pub fn mul(&self, a: u32, b: u32, mode: Rounding) -> u32 {
+        let (ca, cb) = (self.class(a), self.class(b));
+        let sign = self.is_negative(a) != self.is_negative(b);
+        match (ca, cb) {
+            (Class::NaN, _) | (_, Class::NaN) => return self.nan(),
+            (Class::Inf, Class::Zero) | (Class::Zero, Class::Inf) => return self.nan(),
+            (Class::Inf, _) | (_, Class::Inf) => return self.inf(sign),
+            (Class::Zero, _) | (_, Class::Zero) => return self.zero(sign),
+            _ => {}
+        }
+        let (_, siga, ea) = self.decode(a);
+        let (_, sigb, eb) = self.decode(b);
+        self.round_pack(sign, (siga as u128) * (sigb as u128), ea + eb, false, mode)
+    }
+
+    /// `a < b` (false when either is NaN; `-0 == +0`).
+    pub fn lt(&self, a: u32, b: u32) -> bool {
+        self.to_f64(a) < self.to_f64(b)
+    }
+    /// `a <= b` (false when either is NaN).
+    pub fn le(&self, a: u32, b: u32) -> bool {
+        self.to_f64(a) <= self.to_f64(b)
+    }
+    /// `a == b` as numbers (false when either is NaN; `-0 == +0`).
+    pub fn eq(&self, a: u32, b: u32) -> bool {
+        self.to_f64(a) == self.to_f64(b)
+    }
+
+    /// IEEE 754-2019 `minimum`: NaN if either is NaN, `-0` below `+0`.
+    pub fn min(&self, a: u32, b: u32) -> u32 {
+        if self.is_nan(a) || self.is_nan(b) {
+            return self.nan();
+        }
+        if self.lt(a, b) || (self.eq(a, b) && self.is_negative(a)) {
+            a
+        } else {
+            b
+        }
+    }
+
+    /// IEEE 754-2019 `maximum`: NaN if either is NaN, `+0` above `-0`.
+    pub fn max(&self, a: u32, b: u32) -> u32 {
+        if self.is_nan(a) || self.is_nan(b) {
+            return self.nan();
+        }
+        if self.lt(b, a) || (self.eq(a, b) && !self.is_negative(a)) {
+            a
+        } else {
+            b
+        }
+    }
+
+    /// The next value toward +inf (NaN and +inf unchanged; `-0` and `+0` both step to the smallest
+    /// positive subnormal).
+    pub fn next_up(&self, x: u32) -> u32 {
+        match self.class(x) {
+            Class::NaN => x,
+            Class::Inf if !self.is_negative(x) => x,
+            Class::Zero => 1,
+            _ if self.is_negative(x) => {
+                let y = x - 1;
+                if y == self.sign_bit() {
+                    self.zero(true)
+                } else {
+                    y
+                }
+            }
+            _ => x + 1,
+        }
+    }
+
+    /// The next value toward -inf.
+    pub fn next_down(&self, x: u32) -> u32 {
+        let neg = |v: u32| {
+            if self.is_nan(v) {
+                v
+            } else {
+                v ^ self.sign_bit()
+            }
+        };
+        neg(self.next_up(neg(x)))
+    }
+
+    /// Special values worth testing in every operation: zeros, smallest and largest subnormals and
+    /// normals, one, infinities, NaN, and their neighbours.
+    pub fn specials(&self) -> Vec<u32> {
+        let mut v = vec![];
+        let one = self.from_f64(1.0, Rounding::NearestEven);
+        for s in [false, true] {
+            let sb = if s { self.sign_bit() } else { 0 };
+            let min_normal = 1u32 << self.m;
+            for x in [
+                0,
+                1,
+                2,
+                min_normal - 1,
+                min_normal,
+                min_normal + 1,
+                one,
+                one + 1,
+                one - 1,
+            ] {
+                v.push(sb | x);
+            }
+            v.push(self.max_finite(s));
+            v.push(self.max_finite(s) - 1);
+            v.push(self.inf(s));
+        }
+        v.push(self.nan());
+        v.push(self.nan() | 1);
+        v
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn fp32_layout_matches_native_f32() {
+        let f = FloatFormat::FP32;
+        for x in [
+            0.0f32,
+            -0.0,
+            1.0,
+            -2.5,
+            1e-45,
+            3.4e38,
+            f32::INFINITY,
+            f32::MIN_POSITIVE,
+        ] {
+            assert_eq!(
+                f.from_f64(x as f64, Rounding::NearestEven),
+                x.to_bits(),
+                "{x}"
+            );
+            assert_eq!(f.to_f64(x.to_bits()), x as f64);
+        }
+    }
+
+    #[test]
+    fn directed_rounding_brackets_an_inexact_value() {
+        let f = FloatFormat::FP16;
+        let d = f.from_f64(0.1, Rounding::Down);
+        let u = f.from_f64(0.1, Rounding::Up);
+        assert!(f.to_f64(d) < 0.1 && 0.1 < f.to_f64(u));
+        assert_eq!(f.next_up(d), u);
+    }
+
+    #[test]
+    fn overflow_saturates_toward_zero_in_the_mode_that_points_there() {
+        let f = FloatFormat::FP16;
+        let max = f.max_finite(false);
+        assert_eq!(f.add(max, max, Rounding::NearestEven), f.inf(false));
+        assert_eq!(f.add(max, max, Rounding::Down), max);
+        assert_eq!(f.add(max, max, Rounding::Up), f.inf(false));
+        let nmax = f.max_finite(true);
+        assert_eq!(f.add(nmax, nmax, Rounding::Up), nmax);
+    }
+
+    #[test]
+    fn exact_cancellation_gives_minus_zero_only_rounding_down() {
+        let f = FloatFormat::BF16;
+        let one = f.from_f64(1.0, Rounding::NearestEven);
+        assert_eq!(f.sub(one, one, Rounding::NearestEven), f.zero(false));
+        assert_eq!(f.sub(one, one, Rounding::Down), f.zero(true));
+    }
+
+    #[test]
+    fn tiny_addend_far_below_last_place_still_moves_directed_results() {
+        let f = FloatFormat::FP32;
+        let one = f.from_f64(1.0, Rounding::NearestEven);
+        let tiny = 1; // smallest subnormal, 2^-149
+        assert_eq!(f.add(one, tiny, Rounding::NearestEven), one);
+        assert_eq!(f.add(one, tiny, Rounding::Up), one + 1);
+        assert_eq!(f.sub(one, tiny, Rounding::Down), f.next_down(one));
+    }
+
+    #[test]
+    fn minimum_and_maximum_order_signed_zeros() {
+        let f = FloatFormat::FP16;
+        assert_eq!(f.min(f.zero(false), f.zero(true)), f.zero(true));
+        assert_eq!(f.max(f.zero(true), f.zero(false)), f.zero(false));
+        assert!(f.is_nan(f.min(f.nan(), f.zero(false))));
+    }
+}
