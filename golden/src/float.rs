@@ -11,7 +11,7 @@
 //! that keeps the datapath conservative, and it is what `half` and native `f32` do.
 //!
 //! Every result is the exact result rounded once (the operands are exact, the sum and product are formed
-//! exactly in up to 128 bits, or with a sticky bit when the operands' exponents are more than 100 apart).
+//! exactly in up to 64 bits, or with a sticky bit when the operands' exponents are more than 38 apart).
 //! NaN results are the canonical quiet NaN (exponent all ones, fraction MSB set, sign clear).
 //!
 //! Directed rounding is the float datapath's tool for conservativeness (ARCHITECTURE.md): lower bounds
@@ -152,8 +152,9 @@ impl FloatFormat {
             _ => Class::Normal,
         }
     }
+    #[inline]
     pub fn is_nan(&self, x: u32) -> bool {
-        self.class(x) == Class::NaN
+        x & !self.sign_bit() > self.inf(false)
     }
     /// Sign bit set.
     pub fn is_negative(&self, x: u32) -> bool {
@@ -200,23 +201,24 @@ impl FloatFormat {
     /// Rounds `+-(sig + d) * 2^exp` into the format, where `d` is 0 when `!sticky` and strictly between
     /// 0 and 1 otherwise. A sticky value must come with at least two bits below the result's last place.
     /// `sig == 0 && !sticky` is not allowed here (exact zeros have their own sign rules).
-    fn round_pack(&self, sign: bool, sig: u128, exp: i32, sticky: bool, mode: Rounding) -> u32 {
+    #[inline]
+    fn round_pack(&self, sign: bool, sig: u64, exp: i32, sticky: bool, mode: Rounding) -> u32 {
         debug_assert!(sig != 0 || sticky);
         let m = self.m as i32;
-        let nb = 128 - sig.leading_zeros() as i32; // bit length (0 when sig == 0)
+        let nb = 64 - sig.leading_zeros() as i32; // bit length (0 when sig == 0)
         let lead = exp + nb - 1;
         let q = (lead - m).max(self.emin() - m); // exponent of the result's last place
         let shift = q - exp;
         let (mut kept, above_half, at_half, inexact) = if shift <= 0 {
             debug_assert!(!sticky, "a sticky value needs guard bits");
             (sig << (-shift) as u32, false, false, false)
-        } else if shift >= 128 || shift > nb + 1 {
+        } else if shift > nb {
             // Everything is below half of the last place.
             (0, false, false, true)
         } else {
             let s = shift as u32;
-            let rem = sig & ((1u128 << s) - 1);
-            let half = 1u128 << (s - 1);
+            let rem = sig & ((1u64 << s) - 1);
+            let half = 1u64 << (s - 1);
             (
                 sig >> s,
                 rem > half || (rem == half && sticky),
@@ -230,17 +232,17 @@ impl FloatFormat {
             Rounding::Up => !sign && inexact,
         };
         let mut q = q;
-        kept += u128::from(up);
-        if kept == 1u128 << (m + 1) {
+        kept += u64::from(up);
+        if kept == 1u64 << (m + 1) {
             kept >>= 1;
             q += 1;
         }
-        if kept >= 1u128 << m {
+        if kept >= 1u64 << m {
             let bexp = q + m + self.bias();
             if bexp >= self.exp_all_ones() as i32 {
                 return self.overflow(sign, mode);
             }
-            self.pack(sign, bexp as u32, (kept - (1u128 << m)) as u32)
+            self.pack(sign, bexp as u32, (kept - (1u64 << m)) as u32)
         } else {
             self.pack(sign, 0, kept as u32)
         }
@@ -274,29 +276,46 @@ impl FloatFormat {
             (frac | (1 << 52), bexp - 1075)
         };
         // Two guard bits make a sticky-free, exact input acceptable to round_pack.
-        self.round_pack(x < 0.0, (sig as u128) << 2, exp - 2, false, mode)
+        self.round_pack(x < 0.0, sig << 2, exp - 2, false, mode)
+    }
+
+    /// True when both operands are finite and nonzero (the hot path of add and mul).
+    #[inline(always)]
+    fn both_ordinary(&self, a: u32, b: u32) -> bool {
+        let (s, inf) = (self.sign_bit(), self.inf(false));
+        let (ma, mb) = (a & !s, b & !s);
+        ma != 0 && mb != 0 && ma < inf && mb < inf
     }
 
     /// `a + b`, rounded.
+    #[inline]
     pub fn add(&self, a: u32, b: u32, mode: Rounding) -> u32 {
+        if self.both_ordinary(a, b) {
+            self.add_ordinary(a, b, mode)
+        } else {
+            self.add_special(a, b, mode)
+        }
+    }
+
+    #[cold]
+    fn add_special(&self, a: u32, b: u32, mode: Rounding) -> u32 {
         let (ca, cb) = (self.class(a), self.class(b));
         let (sa, sb) = (self.is_negative(a), self.is_negative(b));
         match (ca, cb) {
-            (Class::NaN, _) | (_, Class::NaN) => return self.nan(),
-            (Class::Inf, Class::Inf) => return if sa == sb { a } else { self.nan() },
-            (Class::Inf, _) => return a,
-            (_, Class::Inf) => return b,
-            (Class::Zero, Class::Zero) => {
-                return if sa == sb {
-                    a
-                } else {
-                    self.zero(mode == Rounding::Down)
-                };
-            }
-            (Class::Zero, _) => return b,
-            (_, Class::Zero) => return a,
-            _ => {}
+            (Class::NaN, _) | (_, Class::NaN) => self.nan(),
+            (Class::Inf, Class::Inf) if sa == sb => a,
+            (Class::Inf, Class::Inf) => self.nan(),
+            (Class::Inf, _) => a,
+            (_, Class::Inf) => b,
+            (Class::Zero, Class::Zero) if sa == sb => a,
+            (Class::Zero, Class::Zero) => self.zero(mode == Rounding::Down),
+            (Class::Zero, _) => b,
+            (_, Class::Zero) => a,
+            _ => unreachable!("add_special with two ordinary operands"),
         }
+    }
+
+    fn add_ordinary(&self, a: u32, b: u32, mode: Rounding) -> u32 {
         let (sa, siga, ea) = self.decode(a);
         let (sb, sigb, eb) = self.decode(b);
         // Make `x` the operand with the larger exponent.
@@ -306,9 +325,11 @@ impl FloatFormat {
             ((sb, sigb, eb), (sa, siga, ea))
         };
         let d = ex - ey;
-        if d <= 100 {
-            let x = (sigx as u128) << d as u32;
-            let y = sigy as u128;
+        // Up to 38 the exact sum fits 64 bits (24 + 38 bits); beyond, y is below x's last place by more
+        // than the M + 5 bits the sticky shortcut needs.
+        if d <= 38 {
+            let x = sigx << d as u32;
+            let y = sigy;
             if sx == sy {
                 self.round_pack(sx, x + y, ey, false, mode)
             } else if x == y {
@@ -319,8 +340,8 @@ impl FloatFormat {
                 self.round_pack(sy, y - x, ey, false, mode)
             }
         } else {
-            // |y| < 2^(ex - 100) is far below x's last place: it only decides rounding, as a sticky bit.
-            let x = (sigx as u128) << 3;
+            // |y| < 2^(ex - 14) is far below x's last place: it only decides rounding, as a sticky bit.
+            let x = sigx << 3;
             let sig = if sx == sy { x } else { x - 1 };
             self.round_pack(sx, sig, ex - 3, true, mode)
         }
@@ -337,32 +358,57 @@ impl FloatFormat {
     }
 
     /// `a * b`, rounded.
+    #[inline]
     pub fn mul(&self, a: u32, b: u32, mode: Rounding) -> u32 {
-        let (ca, cb) = (self.class(a), self.class(b));
         let sign = self.is_negative(a) != self.is_negative(b);
-        match (ca, cb) {
-            (Class::NaN, _) | (_, Class::NaN) => return self.nan(),
-            (Class::Inf, Class::Zero) | (Class::Zero, Class::Inf) => return self.nan(),
-            (Class::Inf, _) | (_, Class::Inf) => return self.inf(sign),
-            (Class::Zero, _) | (_, Class::Zero) => return self.zero(sign),
-            _ => {}
+        if !self.both_ordinary(a, b) {
+            return self.mul_special(a, b, sign);
         }
         let (_, siga, ea) = self.decode(a);
         let (_, sigb, eb) = self.decode(b);
-        self.round_pack(sign, (siga as u128) * (sigb as u128), ea + eb, false, mode)
+        self.round_pack(sign, siga * sigb, ea + eb, false, mode)
+    }
+
+    /// Sign-magnitude order of two non-NaN patterns: the comparator of the hardware.
+    #[inline]
+    fn order(&self, a: u32, b: u32) -> std::cmp::Ordering {
+        use std::cmp::Ordering::*;
+        let s = self.sign_bit();
+        let (ma, mb) = (a & !s, b & !s);
+        if ma == 0 && mb == 0 {
+            return Equal; // -0 == +0
+        }
+        match (a & s != 0, b & s != 0) {
+            (false, false) => ma.cmp(&mb),
+            (true, true) => mb.cmp(&ma),
+            (true, false) => Less,
+            (false, true) => Greater,
+        }
+    }
+    #[cold]
+    fn mul_special(&self, a: u32, b: u32, sign: bool) -> u32 {
+        match (self.class(a), self.class(b)) {
+            (Class::NaN, _) | (_, Class::NaN) => self.nan(),
+            (Class::Inf, Class::Zero) | (Class::Zero, Class::Inf) => self.nan(),
+            (Class::Inf, _) | (_, Class::Inf) => self.inf(sign),
+            _ => self.zero(sign),
+        }
     }
 
     /// `a < b` (false when either is NaN; `-0 == +0`).
+    #[inline]
     pub fn lt(&self, a: u32, b: u32) -> bool {
-        self.to_f64(a) < self.to_f64(b)
+        !self.is_nan(a) && !self.is_nan(b) && self.order(a, b).is_lt()
     }
     /// `a <= b` (false when either is NaN).
+    #[inline]
     pub fn le(&self, a: u32, b: u32) -> bool {
-        self.to_f64(a) <= self.to_f64(b)
+        !self.is_nan(a) && !self.is_nan(b) && self.order(a, b).is_le()
     }
     /// `a == b` as numbers (false when either is NaN; `-0 == +0`).
+    #[inline]
     pub fn eq(&self, a: u32, b: u32) -> bool {
-        self.to_f64(a) == self.to_f64(b)
+        !self.is_nan(a) && !self.is_nan(b) && self.order(a, b).is_eq()
     }
 
     /// IEEE 754-2019 `minimum`: NaN if either is NaN, `-0` below `+0`.

@@ -21,6 +21,7 @@ pub mod floatcheck;
 pub mod gen;
 pub mod geom;
 pub mod slab_fix;
+pub mod slab_float;
 pub mod slab_ref;
 pub mod vectors;
 

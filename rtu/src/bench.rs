@@ -3,8 +3,10 @@
 //! Figures go to stdout and `<out>/bench.csv`; nothing here is a pass/fail test.
 
 use golden::fixed::FixFormat;
+use golden::float::FloatFormat;
 use golden::gen::GenKind;
 use golden::slab_fix::slab_fix;
+use golden::slab_float;
 use rtl::slab_fix::SlabFixIo;
 use std::fmt::Write as _;
 use std::hint::black_box;
@@ -22,6 +24,9 @@ pub struct Args {
     /// Tests for the bit-accurate model.
     #[arg(long, default_value_t = 50_000_000)]
     model_tests: u64,
+    /// Tests for the float model, per format.
+    #[arg(long, default_value_t = 10_000_000)]
+    float_tests: u64,
     /// Tests for the rust-hdl simulation.
     #[arg(long, default_value_t = 500_000)]
     rtl_tests: u64,
@@ -79,6 +84,36 @@ pub fn run(a: &Args, out: &Path) -> Result<(), String> {
     black_box(hits);
     let model = a.model_tests as f64 / t.elapsed().as_secs_f64();
     println!("  model:     {model:>14.0} tests/s");
+
+    // 1b. The bit-accurate float model, in each issue-3 format, on the same world vectors.
+    let mut float_rates = vec![];
+    for f in [
+        FloatFormat::FP32,
+        FloatFormat::E8M15,
+        FloatFormat::BF16,
+        FloatFormat::FP16,
+    ] {
+        let map = tb::campaign::campaign_map(fmt);
+        let fpool: Vec<_> = tb::campaign::world_gen(&map, GenKind::Mixed, 98)
+            .take(1 << 16)
+            .map(|(r, b)| {
+                (
+                    slab_float::quantize_ray(&f, &r).unwrap(),
+                    slab_float::quantize_box(&f, &b).unwrap(),
+                )
+            })
+            .collect();
+        let t = Instant::now();
+        let mut hits = 0u64;
+        for i in 0..a.float_tests as usize {
+            let (r, b) = &fpool[i & (fpool.len() - 1)];
+            hits += slab_float::slab_float(black_box(&f), black_box(r), black_box(b)).hit as u64;
+        }
+        black_box(hits);
+        let rate = a.float_tests as f64 / t.elapsed().as_secs_f64();
+        println!("  float model {}: {rate:>14.0} tests/s", f.name());
+        float_rates.push((f, rate));
+    }
 
     // 2. The rust-hdl simulation (direct loop).
     let rtl = rtl::with_slab_fix!(&fmt, S, { bench_rtl::<S>(fmt, &pool, a.rtl_tests) })?;

@@ -111,18 +111,20 @@ impl ConservativeStats {
     }
 }
 
-/// Runs `n` world vectors of `kind` through quantisation, the bit-accurate model and the exact oracle on
-/// `threads` threads (thread `k` uses seed `seed + k`), judging each. `progress(done)` is called from the
-/// threads every 4,096 vectors with the count of that batch.
-pub fn conservative_campaign(
-    fmt: FixFormat,
+/// Runs `n` world vectors of `kind` (snapped sometimes to cells of `cell` world units) through `judge` —
+/// quantisation, a bit-accurate model and the exact oracle — on `threads` threads (thread `k` uses seed
+/// `seed + k`). `progress(done)` is called from the threads every 4,096 vectors with the count of that
+/// batch. `judge` returns the verdict and a description of the datapath's result for reports.
+pub fn judge_campaign(
     kind: GenKind,
+    cell: f64,
     n: u64,
     seed: u64,
     threads: usize,
     progress: &(dyn Fn(u64) + Sync),
+    judge: &(dyn Fn(&golden::Ray, &golden::Aabb) -> (bool, Verdict, String) + Sync),
 ) -> ConservativeStats {
-    let map = campaign_map(fmt);
+    let (lo, hi) = campaign_bounds();
     let threads = threads.max(1) as u64;
     let mut total = ConservativeStats::default();
     std::thread::scope(|s| {
@@ -131,17 +133,19 @@ pub fn conservative_campaign(
                 let share = n / threads + u64::from(k < n % threads);
                 s.spawn(move || {
                     let mut st = ConservativeStats::default();
-                    for (i, (r, b)) in world_gen(&map, kind, seed.wrapping_add(k)).take(share as usize).enumerate() {
-                        let (fr, fb, out, v) = check_fix(&map, &r, &b).expect("campaign vectors fit the grid");
+                    let gen = SlabGen::new(kind, lo, hi, cell, seed.wrapping_add(k));
+                    for (i, (r, b)) in gen.take(share as usize).enumerate() {
+                        let (hit, v, what) = judge(&r, &b);
                         st.vectors += 1;
                         match v {
-                            Verdict::Agree => st.true_hits += out.hit as u64,
+                            Verdict::Agree => st.true_hits += hit as u64,
                             Verdict::FalseHit => st.false_hits += 1,
                             Verdict::Violation(why) => {
                                 st.true_hits += 1;
                                 st.violation_count += 1;
                                 if st.violations.len() < 10 {
-                                    st.violations.push(format!("{why}\n  ray {r:?}\n  box {b:?}\n  quantised {fr:?} {fb:?}\n  result {out:?}"));
+                                    st.violations
+                                        .push(format!("{why}\n  ray {r:?}\n  box {b:?}\n  {what}"));
                                 }
                             }
                         }
@@ -158,4 +162,59 @@ pub fn conservative_campaign(
         }
     });
     total
+}
+
+/// The fixed-point datapath's conservativeness campaign on the campaign grid of `fmt`.
+pub fn conservative_campaign(
+    fmt: FixFormat,
+    kind: GenKind,
+    n: u64,
+    seed: u64,
+    threads: usize,
+    progress: &(dyn Fn(u64) + Sync),
+) -> ConservativeStats {
+    let map = campaign_map(fmt);
+    let judge = move |r: &golden::Ray, b: &golden::Aabb| {
+        let (fr, fb, out, v) = check_fix(&map, r, b).expect("campaign vectors fit the grid");
+        (
+            out.hit,
+            v,
+            format!("quantised {fr:?} {fb:?}\n  result {out:?}"),
+        )
+    };
+    judge_campaign(
+        kind,
+        golden::fixed::ldexp(1.0, map.k),
+        n,
+        seed,
+        threads,
+        progress,
+        &judge,
+    )
+}
+
+/// The float datapath's conservativeness campaign in format `f`.
+pub fn float_campaign(
+    f: golden::float::FloatFormat,
+    kind: GenKind,
+    n: u64,
+    seed: u64,
+    threads: usize,
+    progress: &(dyn Fn(u64) + Sync),
+) -> ConservativeStats {
+    use golden::slab_float::{judge_float, quantize_box, quantize_ray, slab_float};
+    let judge = move |r: &golden::Ray, b: &golden::Aabb| {
+        let (fr, fb) = (
+            quantize_ray(&f, r).expect("fits"),
+            quantize_box(&f, b).expect("fits"),
+        );
+        let out = slab_float(&f, &fr, &fb);
+        let v = judge_float(&f, &out, &golden::exact::slab_exact(r, b));
+        (
+            out.hit,
+            v,
+            format!("quantised {fr:?} {fb:?}\n  result {out:?}"),
+        )
+    };
+    judge_campaign(kind, 1.0 / 64.0, n, seed, threads, progress, &judge)
 }
