@@ -8,6 +8,8 @@
 
 pub mod axis_dist;
 pub mod export;
+pub mod fp_add;
+pub mod fp_round;
 pub mod mul_round;
 pub mod slab_fix;
 

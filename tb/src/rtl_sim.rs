@@ -76,3 +76,47 @@ impl<S: SlabFixIo> PipelinedDut for SlabFixRtl<S> {
         self.uut.result()
     }
 }
+
+/// A float adder in simulation (inputs are operand pairs, outputs the sum's bit pattern).
+pub struct FpAddRtl<const E: usize, const M: usize, const N: usize, const W: usize> {
+    /// The block.
+    pub uut: rtl::fp_add::FpAdd<E, M, N, W>,
+}
+
+impl<const E: usize, const M: usize, const N: usize, const W: usize> FpAddRtl<E, M, N, W> {
+    pub fn new(mode: golden::float::Rounding) -> Self {
+        let mut uut = rtl::fp_add::FpAdd::new(mode);
+        uut.connect_all();
+        FpAddRtl { uut }
+    }
+}
+
+impl<const E: usize, const M: usize, const N: usize, const W: usize> PipelinedDut for FpAddRtl<E, M, N, W> {
+    type In = (u32, u32);
+    type Out = u32;
+
+    fn latency(&self) -> usize {
+        rtl::fp_add::FP_ADD_LATENCY
+    }
+
+    fn step(&mut self, input: Option<(u16, &(u32, u32))>) -> Option<(u16, u32)> {
+        match input {
+            Some((tag, (a, b))) => {
+                self.uut.valid_in.next = true;
+                self.uut.tag_in.next = bits::<{ rtl::TAG_BITS }>(tag as u64);
+                self.uut.a.next = bits::<N>(*a as u64);
+                self.uut.b.next = bits::<N>(*b as u64);
+            }
+            None => self.uut.valid_in.next = false,
+        }
+        self.uut.clock.next = Clock { clk: false };
+        assert!(simulate(&mut self.uut, 1000), "FpAdd failed to converge");
+        self.uut.clock.next = Clock { clk: true };
+        assert!(simulate(&mut self.uut, 1000), "FpAdd failed to converge");
+        if self.uut.valid_out.val() {
+            Some((self.uut.tag_out.val().to_u64() as u16, self.uut.y.val().to_u64() as u32))
+        } else {
+            None
+        }
+    }
+}
