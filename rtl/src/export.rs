@@ -43,3 +43,26 @@ pub fn export_all(dir: &Path) -> std::io::Result<Vec<PathBuf>> {
     }
     Ok(out)
 }
+
+/// Module name of a float adder: format and rounding mode, e.g. `fp_add_e8m23_rd`.
+pub fn fp_add_module(f: &golden::float::FloatFormat, mode: golden::float::Rounding) -> String {
+    format!("fp_add_{}_{}", f.name(), mode_suffix(mode))
+}
+
+/// `rne`, `rd` or `ru`.
+pub fn mode_suffix(mode: golden::float::Rounding) -> &'static str {
+    match mode {
+        golden::float::Rounding::NearestEven => "rne",
+        golden::float::Rounding::Down => "rd",
+        golden::float::Rounding::Up => "ru",
+    }
+}
+
+/// Verilog of the float adder `FpAdd<E, M, N>` in `mode`.
+pub fn fp_add_verilog<const E: usize, const M: usize, const N: usize>(
+    mode: golden::float::Rounding,
+) -> String {
+    let f = golden::float::FloatFormat::new(E as u32, M as u32).expect("valid format");
+    let mut uut = crate::fp_add::FpAdd::<E, M, N>::new(mode);
+    verilog_named(&mut uut, &fp_add_module(&f, mode))
+}

@@ -78,12 +78,12 @@ impl<S: SlabFixIo> PipelinedDut for SlabFixRtl<S> {
 }
 
 /// A float adder in simulation (inputs are operand pairs, outputs the sum's bit pattern).
-pub struct FpAddRtl<const E: usize, const M: usize, const N: usize, const W: usize> {
+pub struct FpAddRtl<const E: usize, const M: usize, const N: usize> {
     /// The block.
-    pub uut: rtl::fp_add::FpAdd<E, M, N, W>,
+    pub uut: rtl::fp_add::FpAdd<E, M, N>,
 }
 
-impl<const E: usize, const M: usize, const N: usize, const W: usize> FpAddRtl<E, M, N, W> {
+impl<const E: usize, const M: usize, const N: usize> FpAddRtl<E, M, N> {
     pub fn new(mode: golden::float::Rounding) -> Self {
         let mut uut = rtl::fp_add::FpAdd::new(mode);
         uut.connect_all();
@@ -91,7 +91,7 @@ impl<const E: usize, const M: usize, const N: usize, const W: usize> FpAddRtl<E,
     }
 }
 
-impl<const E: usize, const M: usize, const N: usize, const W: usize> PipelinedDut for FpAddRtl<E, M, N, W> {
+impl<const E: usize, const M: usize, const N: usize> PipelinedDut for FpAddRtl<E, M, N> {
     type In = (u32, u32);
     type Out = u32;
 
@@ -114,7 +114,10 @@ impl<const E: usize, const M: usize, const N: usize, const W: usize> PipelinedDu
         self.uut.clock.next = Clock { clk: true };
         assert!(simulate(&mut self.uut, 1000), "FpAdd failed to converge");
         if self.uut.valid_out.val() {
-            Some((self.uut.tag_out.val().to_u64() as u16, self.uut.y.val().to_u64() as u32))
+            Some((
+                self.uut.tag_out.val().to_u64() as u16,
+                self.uut.y.val().to_u64() as u32,
+            ))
         } else {
             None
         }
