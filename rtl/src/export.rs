@@ -44,9 +44,13 @@ pub fn export_all(dir: &Path) -> std::io::Result<Vec<PathBuf>> {
     Ok(out)
 }
 
-/// Module name of a float adder: format and rounding mode, e.g. `fp_add_e8m23_rd`.
-pub fn fp_add_module(f: &golden::float::FloatFormat, mode: golden::float::Rounding) -> String {
-    format!("fp_add_{}_{}", f.name(), mode_suffix(mode))
+/// Module name of a float unit (`add`, `mul`): format and rounding mode, e.g. `fp_add_e8m23_rd`.
+pub fn fp_unit_module(
+    unit: &str,
+    f: &golden::float::FloatFormat,
+    mode: golden::float::Rounding,
+) -> String {
+    format!("fp_{unit}_{}_{}", f.name(), mode_suffix(mode))
 }
 
 /// `rne`, `rd` or `ru`.
@@ -64,5 +68,14 @@ pub fn fp_add_verilog<const E: usize, const M: usize, const N: usize>(
 ) -> String {
     let f = golden::float::FloatFormat::new(E as u32, M as u32).expect("valid format");
     let mut uut = crate::fp_add::FpAdd::<E, M, N>::new(mode);
-    verilog_named(&mut uut, &fp_add_module(&f, mode))
+    verilog_named(&mut uut, &fp_unit_module("add", &f, mode))
+}
+
+/// Verilog of the float multiplier `FpMul<E, M, N>` in `mode`.
+pub fn fp_mul_verilog<const E: usize, const M: usize, const N: usize>(
+    mode: golden::float::Rounding,
+) -> String {
+    let f = golden::float::FloatFormat::new(E as u32, M as u32).expect("valid format");
+    let mut uut = crate::fp_mul::FpMul::<E, M, N>::new(mode);
+    verilog_named(&mut uut, &fp_unit_module("mul", &f, mode))
 }

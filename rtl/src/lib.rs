@@ -9,10 +9,14 @@
 pub mod axis_dist;
 pub mod export;
 pub mod fp_add;
+pub mod fp_mul;
 pub mod fp_round;
 pub mod mul_round;
+pub mod sig_mul;
 pub mod slab_fix;
 
+pub use fp_add::FpAdd;
+pub use fp_mul::FpMul;
 pub use slab_fix::{SlabFix, SLAB_FIX_LATENCY, TAG_BITS};
 
 /// The slab tester for `golden::fixed::FixFormat::b8()`.

@@ -77,49 +77,60 @@ impl<S: SlabFixIo> PipelinedDut for SlabFixRtl<S> {
     }
 }
 
-/// A float adder in simulation (inputs are operand pairs, outputs the sum's bit pattern).
-pub struct FpAddRtl<const E: usize, const M: usize, const N: usize> {
-    /// The block.
-    pub uut: rtl::fp_add::FpAdd<E, M, N>,
-}
+/// Drivers for the two-operand float units (`FpAdd`, `FpMul`): operand pairs in, result patterns out.
+macro_rules! fp_unit_driver {
+    ($name:ident, $block:ident, $latency:expr, $what:literal) => {
+        #[doc = concat!("A float ", $what, " in simulation.")]
+        pub struct $name<const E: usize, const M: usize, const N: usize> {
+            /// The block.
+            pub uut: rtl::$block<E, M, N>,
+        }
 
-impl<const E: usize, const M: usize, const N: usize> FpAddRtl<E, M, N> {
-    pub fn new(mode: golden::float::Rounding) -> Self {
-        let mut uut = rtl::fp_add::FpAdd::new(mode);
-        uut.connect_all();
-        FpAddRtl { uut }
-    }
-}
-
-impl<const E: usize, const M: usize, const N: usize> PipelinedDut for FpAddRtl<E, M, N> {
-    type In = (u32, u32);
-    type Out = u32;
-
-    fn latency(&self) -> usize {
-        rtl::fp_add::FP_ADD_LATENCY
-    }
-
-    fn step(&mut self, input: Option<(u16, &(u32, u32))>) -> Option<(u16, u32)> {
-        match input {
-            Some((tag, (a, b))) => {
-                self.uut.valid_in.next = true;
-                self.uut.tag_in.next = bits::<{ rtl::TAG_BITS }>(tag as u64);
-                self.uut.a.next = bits::<N>(*a as u64);
-                self.uut.b.next = bits::<N>(*b as u64);
+        impl<const E: usize, const M: usize, const N: usize> $name<E, M, N> {
+            pub fn new(mode: golden::float::Rounding) -> Self {
+                let mut uut = rtl::$block::new(mode);
+                uut.connect_all();
+                $name { uut }
             }
-            None => self.uut.valid_in.next = false,
         }
-        self.uut.clock.next = Clock { clk: false };
-        assert!(simulate(&mut self.uut, 1000), "FpAdd failed to converge");
-        self.uut.clock.next = Clock { clk: true };
-        assert!(simulate(&mut self.uut, 1000), "FpAdd failed to converge");
-        if self.uut.valid_out.val() {
-            Some((
-                self.uut.tag_out.val().to_u64() as u16,
-                self.uut.y.val().to_u64() as u32,
-            ))
-        } else {
-            None
+
+        impl<const E: usize, const M: usize, const N: usize> PipelinedDut for $name<E, M, N> {
+            type In = (u32, u32);
+            type Out = u32;
+
+            fn latency(&self) -> usize {
+                $latency
+            }
+
+            fn step(&mut self, input: Option<(u16, &(u32, u32))>) -> Option<(u16, u32)> {
+                match input {
+                    Some((tag, (a, b))) => {
+                        self.uut.valid_in.next = true;
+                        self.uut.tag_in.next = bits::<{ rtl::TAG_BITS }>(tag as u64);
+                        self.uut.a.next = bits::<N>(*a as u64);
+                        self.uut.b.next = bits::<N>(*b as u64);
+                    }
+                    None => self.uut.valid_in.next = false,
+                }
+                for high in [false, true] {
+                    self.uut.clock.next = Clock { clk: high };
+                    assert!(
+                        simulate(&mut self.uut, 1000),
+                        concat!("float ", $what, " failed to converge")
+                    );
+                }
+                if self.uut.valid_out.val() {
+                    Some((
+                        self.uut.tag_out.val().to_u64() as u16,
+                        self.uut.y.val().to_u64() as u32,
+                    ))
+                } else {
+                    None
+                }
+            }
         }
-    }
+    };
 }
+
+fp_unit_driver!(FpAddRtl, FpAdd, rtl::fp_add::FP_ADD_LATENCY, "adder");
+fp_unit_driver!(FpMulRtl, FpMul, rtl::fp_mul::FP_MUL_LATENCY, "multiplier");

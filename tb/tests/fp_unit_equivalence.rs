@@ -1,11 +1,12 @@
-//! The rust-hdl float adder against `golden::float::FloatFormat::add`, bit for bit, in every rounding
-//! mode: every special pair, random pairs (with close pairs for cancellation), back to back and with bubbles.
+//! The rust-hdl float adder and multiplier against `golden::float::FloatFormat::{add, mul}`, bit for bit,
+//! in every rounding mode: every special pair, random pairs (with close pairs for cancellation), back to
+//! back and with bubbles; exhaustive on E4M3.
 
 use golden::float::{FloatFormat, Rounding};
 use rand::{Rng, SeedableRng};
 use rand_pcg::Pcg64;
 use tb::dut::run_checked;
-use tb::rtl_sim::FpAddRtl;
+use tb::rtl_sim::{FpAddRtl, FpMulRtl};
 
 fn pairs(f: &FloatFormat, n: usize, seed: u64) -> Vec<Option<(u32, u32)>> {
     let s = f.specials();
