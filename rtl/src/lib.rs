@@ -7,17 +7,23 @@
 //! | [`slab_fix::SlabFix`] | `slab_fix.rs` | `golden::slab_fix::slab_fix` |
 
 pub mod axis_dist;
+pub mod delay;
 pub mod export;
 pub mod fp_add;
+pub mod fp_cmp;
 pub mod fp_mul;
 pub mod fp_round;
 pub mod mul_round;
 pub mod sig_mul;
 pub mod slab_fix;
+pub mod slab_float;
+pub mod slab_io;
 
 pub use fp_add::FpAdd;
 pub use fp_mul::FpMul;
 pub use slab_fix::{SlabFix, SLAB_FIX_LATENCY, TAG_BITS};
+pub use slab_float::{SlabFloat, SLAB_FLOAT_LATENCY};
+pub use slab_io::SlabIo;
 
 /// The slab tester for `golden::fixed::FixFormat::b8()`.
 pub type SlabFixB8 = SlabFix<8, 9, 12, 14>;
@@ -25,6 +31,17 @@ pub type SlabFixB8 = SlabFix<8, 9, 12, 14>;
 pub type SlabFixB12 = SlabFix<12, 13, 16, 20>;
 /// The slab tester for `golden::fixed::FixFormat::b16()`.
 pub type SlabFixB16 = SlabFix<16, 17, 20, 24>;
+
+/// The float slab tester in binary32.
+pub type SlabFloatE8M23 = SlabFloat<8, 23, 32>;
+/// The float slab tester in E8M15.
+pub type SlabFloatE8M15 = SlabFloat<8, 15, 24>;
+/// The float slab tester in bfloat16.
+pub type SlabFloatE8M7 = SlabFloat<8, 7, 16>;
+/// The float slab tester in binary16.
+pub type SlabFloatE5M10 = SlabFloat<5, 10, 16>;
+/// The float slab tester in the small 12-bit E6M5.
+pub type SlabFloatE6M5 = SlabFloat<6, 5, 12>;
 
 /// Runs `$body` with `$t` bound to the `SlabFix` type of a preset format, or returns an error for a
 /// format without an instantiated block (const generics need the widths at compile time).

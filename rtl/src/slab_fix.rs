@@ -41,6 +41,7 @@
 
 use crate::axis_dist::AxisDist;
 use crate::mul_round::MulRound;
+use crate::slab_io::SlabIo;
 use golden::fixed::{FixBox, FixFormat, FixRay};
 use golden::slab_fix::SlabFixOut;
 use rust_hdl::prelude::*;
@@ -195,18 +196,10 @@ impl<const G: usize, const D: usize, const I: usize, const T: usize> SlabFix<G, 
     }
 }
 
-/// The testbench-side API of a fixed slab tester of any width, so drivers need not spell the widths.
-pub trait SlabFixIo: Block {
+/// A fixed slab tester of any width, built for a format, so drivers need not spell the widths.
+pub trait SlabFixIo: SlabIo<Ray = FixRay, Box = FixBox, Out = SlabFixOut> {
     /// A tester for `fmt` (whose widths must match the block's).
     fn for_format(fmt: &FixFormat) -> Self;
-    /// Sets the clock input.
-    fn set_clock(&mut self, high: bool);
-    /// Drives one test: `None` drives a bubble (`valid_in` low).
-    fn drive(&mut self, test: Option<(u16, &FixRay, &FixBox)>);
-    /// Reads the outputs: `Some((tag, result))` when `valid_out` is high.
-    fn result(&self) -> Option<(u16, SlabFixOut)>;
-    /// The raw value of an output port, by its Verilog name (for cross-simulation).
-    fn output_word(&self, port: &str) -> Option<u64>;
 }
 
 impl<const G: usize, const D: usize, const I: usize, const T: usize> SlabFixIo
@@ -215,6 +208,15 @@ impl<const G: usize, const D: usize, const I: usize, const T: usize> SlabFixIo
     fn for_format(fmt: &FixFormat) -> Self {
         Self::new(fmt)
     }
+}
+
+impl<const G: usize, const D: usize, const I: usize, const T: usize> SlabIo
+    for SlabFix<G, D, I, T>
+{
+    type Ray = FixRay;
+    type Box = FixBox;
+    type Out = SlabFixOut;
+    const LATENCY: usize = SLAB_FIX_LATENCY;
 
     fn set_clock(&mut self, high: bool) {
         self.clock.next = Clock { clk: high };

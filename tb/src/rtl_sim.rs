@@ -2,9 +2,10 @@
 //! threaded `Simulation`, per RUST_HDL_NOTES.md), optionally writing a VCD.
 
 use crate::dut::PipelinedDut;
-use golden::fixed::{FixBox, FixFormat, FixRay};
-use golden::slab_fix::SlabFixOut;
+use golden::fixed::FixFormat;
 use rtl::slab_fix::SlabFixIo;
+use rtl::slab_float::SlabFloatIo;
+use rtl::SlabIo;
 use rust_hdl::core::vcd_probe::{write_vcd_change, write_vcd_dump, write_vcd_header, VCDProbe};
 use rust_hdl::prelude::*;
 use std::fs::File;
@@ -14,41 +15,67 @@ use std::path::Path;
 /// Half a clock period in VCD time units (ps): the clock period is 10 ps.
 pub const HALF_PERIOD: u64 = 5;
 
-/// A fixed slab tester in simulation.
-pub struct SlabFixRtl<S: SlabFixIo> {
+/// A slab tester (either datapath) in simulation.
+pub struct SlabRtl<S: SlabIo> {
     /// The block (read its outputs for cross-simulation).
     pub uut: S,
     vcd: Option<VCDProbe<BufWriter<File>>>,
     cycle: u64,
 }
 
-impl<S: SlabFixIo> SlabFixRtl<S> {
+/// The fixed slab tester's driver.
+pub type SlabFixRtl<S> = SlabRtl<S>;
+/// The float slab tester's driver.
+pub type SlabFloatRtl<S> = SlabRtl<S>;
+
+impl<S: SlabFixIo> SlabRtl<S> {
+    /// A fixed slab tester for `fmt`.
     pub fn new(fmt: &FixFormat) -> Self {
-        let mut uut = S::for_format(fmt);
+        Self::wrap(S::for_format(fmt))
+    }
+
+    /// The same, writing every signal of the block to a VCD file at `path`.
+    pub fn with_vcd(fmt: &FixFormat, path: &Path) -> std::io::Result<Self> {
+        Self::wrap(S::for_format(fmt)).vcd_to(path)
+    }
+}
+
+impl<S: SlabFloatIo> SlabRtl<S> {
+    /// A float slab tester.
+    pub fn float() -> Self {
+        Self::wrap(S::make())
+    }
+
+    /// The same, writing every signal of the block to a VCD file at `path`.
+    pub fn float_with_vcd(path: &Path) -> std::io::Result<Self> {
+        Self::wrap(S::make()).vcd_to(path)
+    }
+}
+
+impl<S: SlabIo> SlabRtl<S> {
+    fn wrap(mut uut: S) -> Self {
         uut.connect_all();
-        SlabFixRtl {
+        SlabRtl {
             uut,
             vcd: None,
             cycle: 0,
         }
     }
 
-    /// The same, writing every signal of the block to a VCD file at `path`.
-    pub fn with_vcd(fmt: &FixFormat, path: &Path) -> std::io::Result<Self> {
-        let mut s = Self::new(fmt);
+    fn vcd_to(mut self, path: &Path) -> std::io::Result<Self> {
         if let Some(d) = path.parent() {
             std::fs::create_dir_all(d)?;
         }
         let w = BufWriter::new(File::create(path)?);
-        let mut v = write_vcd_header(w, &s.uut);
-        v = write_vcd_dump(v, &s.uut);
-        s.vcd = Some(v);
-        Ok(s)
+        let mut v = write_vcd_header(w, &self.uut);
+        v = write_vcd_dump(v, &self.uut);
+        self.vcd = Some(v);
+        Ok(self)
     }
 
     fn settle(&mut self, t: u64) {
         if !simulate(&mut self.uut, 1000) {
-            panic!("SlabFix failed to converge in cycle {}", self.cycle);
+            panic!("the slab tester failed to converge in cycle {}", self.cycle);
         }
         if let Some(mut v) = self.vcd.take() {
             v.timestamp(t).expect("VCD write");
@@ -57,15 +84,15 @@ impl<S: SlabFixIo> SlabFixRtl<S> {
     }
 }
 
-impl<S: SlabFixIo> PipelinedDut for SlabFixRtl<S> {
-    type In = (FixRay, FixBox);
-    type Out = SlabFixOut;
+impl<S: SlabIo> PipelinedDut for SlabRtl<S> {
+    type In = (S::Ray, S::Box);
+    type Out = S::Out;
 
     fn latency(&self) -> usize {
-        rtl::SLAB_FIX_LATENCY
+        S::LATENCY
     }
 
-    fn step(&mut self, input: Option<(u16, &(FixRay, FixBox))>) -> Option<(u16, SlabFixOut)> {
+    fn step(&mut self, input: Option<(u16, &(S::Ray, S::Box))>) -> Option<(u16, S::Out)> {
         self.uut.drive(input.map(|(tag, (r, b))| (tag, r, b)));
         self.uut.set_clock(false);
         let t = self.cycle * 2 * HALF_PERIOD;

@@ -100,3 +100,84 @@ pub fn slab_burst(fmt: FixFormat) -> impl Strategy<Value = Vec<SlabVec>> {
         out
     })
 }
+
+/// Any float pattern of format `f`, with specials (zeros, infinities, NaN, extremes) weighted up.
+fn float_code(f: golden::float::FloatFormat) -> impl Strategy<Value = u32> {
+    let specials = f.specials();
+    prop_oneof![prop::sample::select(specials), 0..=f.mask()]
+}
+
+/// A float slab vector: every field any pattern of the format (NaN included).
+pub fn raw_float_case(
+    f: golden::float::FloatFormat,
+) -> impl Strategy<Value = (golden::slab_float::FloatRay, golden::slab_float::FloatBox)> {
+    let axis = move || {
+        (
+            float_code(f),
+            float_code(f),
+            float_code(f),
+            float_code(f),
+            any::<bool>(),
+            float_code(f),
+            float_code(f),
+        )
+    };
+    ([axis(), axis(), axis()], float_code(f), float_code(f)).prop_map(|(axes, t_min, t_max)| {
+        let mut r = golden::slab_float::FloatRay {
+            t_min,
+            t_max,
+            ..Default::default()
+        };
+        let mut b = golden::slab_float::FloatBox::default();
+        for (a, (olo, ohi, mlo, mhi, neg, lo, hi)) in axes.into_iter().enumerate() {
+            (r.o_lo[a], r.o_hi[a], r.m_lo[a], r.m_hi[a], r.neg[a]) = (olo, ohi, mlo, mhi, neg);
+            (b.lo[a], b.hi[a]) = (lo, hi);
+        }
+        (r, b)
+    })
+}
+
+/// A world vector from the uniform or adversarial generator quantised into format `f`.
+pub fn world_float_case(
+    f: golden::float::FloatFormat,
+) -> impl Strategy<Value = (golden::slab_float::FloatRay, golden::slab_float::FloatBox)> {
+    (any::<u64>(), any::<bool>()).prop_map(move |(seed, adv)| {
+        let (lo, hi) = crate::campaign::campaign_bounds();
+        let kind = if adv {
+            GenKind::Adversarial
+        } else {
+            GenKind::Uniform
+        };
+        let (r, b) = golden::gen::SlabGen::new(kind, lo, hi, 1.0 / 64.0, seed)
+            .next()
+            .expect("endless");
+        (
+            golden::slab_float::quantize_ray(&f, &r).expect("fits"),
+            golden::slab_float::quantize_box(&f, &b).expect("fits"),
+        )
+    })
+}
+
+/// A burst of 1 to 8 float slab tests, back to back or with bubbles.
+pub fn float_burst(
+    f: golden::float::FloatFormat,
+) -> impl Strategy<Value = Vec<Option<(golden::slab_float::FloatRay, golden::slab_float::FloatBox)>>>
+{
+    prop::collection::vec(
+        (
+            prop_oneof![raw_float_case(f), world_float_case(f)],
+            0..3usize,
+        ),
+        1..=8,
+    )
+    .prop_map(|v| {
+        let mut out = vec![];
+        for (case, bubbles) in v {
+            out.push(Some(case));
+            if bubbles == 2 {
+                out.push(None);
+            }
+        }
+        out
+    })
+}

@@ -1,0 +1,24 @@
+//! `SlabIo`: the testbench-side interface shared by the slab testers of both datapaths, so one driver,
+//! one stream runner and one cross-simulation loop serve both.
+
+use rust_hdl::prelude::*;
+
+/// A pipelined slab tester seen from a testbench: typed inputs and outputs mirroring its golden model.
+pub trait SlabIo: Block {
+    /// The quantised ray type (`FixRay`, `FloatRay`).
+    type Ray: Clone + Copy + std::fmt::Debug + PartialEq + Send + 'static;
+    /// The quantised box type.
+    type Box: Clone + Copy + std::fmt::Debug + PartialEq + Send + 'static;
+    /// The result type.
+    type Out: Clone + Copy + std::fmt::Debug + PartialEq;
+    /// Clocks from a test in to its result out.
+    const LATENCY: usize;
+    /// Sets the clock input.
+    fn set_clock(&mut self, high: bool);
+    /// Drives one test: `None` drives a bubble (`valid_in` low).
+    fn drive(&mut self, test: Option<(u16, &Self::Ray, &Self::Box)>);
+    /// Reads the outputs: `Some((tag, result))` when `valid_out` is high.
+    fn result(&self) -> Option<(u16, Self::Out)>;
+    /// The raw value of an output port, by its Verilog name (for cross-simulation).
+    fn output_word(&self, port: &str) -> Option<u64>;
+}
