@@ -31,13 +31,33 @@ pub fn slab_fix_verilog(fmt: &FixFormat) -> Result<String, String> {
     })
 }
 
-/// Writes `<dir>/<module>.v` for every preset slab format; returns the paths written.
+/// Module name of the float slab tester for a format, e.g. `slab_float_e8m23`.
+pub fn slab_float_module(f: &golden::float::FloatFormat) -> String {
+    format!("slab_float_{}", f.name())
+}
+
+/// Verilog of the float slab tester for an instantiated format.
+pub fn slab_float_verilog(f: &golden::float::FloatFormat) -> Result<String, String> {
+    crate::with_slab_float!(f, S, {
+        let mut uut = S::new();
+        verilog_named(&mut uut, &slab_float_module(f))
+    })
+}
+
+/// Writes `<dir>/<module>.v` for every preset fixed format and every instantiated float format; returns
+/// the paths written.
 pub fn export_all(dir: &Path) -> std::io::Result<Vec<PathBuf>> {
     std::fs::create_dir_all(dir)?;
     let mut out = vec![];
     for fmt in FixFormat::presets() {
         let v = slab_fix_verilog(&fmt).expect("presets are instantiated");
         let p = dir.join(format!("{}.v", slab_fix_module(&fmt)));
+        std::fs::write(&p, v)?;
+        out.push(p);
+    }
+    for f in crate::SLAB_FLOAT_FORMATS {
+        let v = slab_float_verilog(&f).expect("instantiated");
+        let p = dir.join(format!("{}.v", slab_float_module(&f)));
         std::fs::write(&p, v)?;
         out.push(p);
     }

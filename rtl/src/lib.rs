@@ -67,3 +67,48 @@ macro_rules! with_slab_fix {
         }
     }};
 }
+
+/// The float formats with an instantiated float slab tester.
+pub const SLAB_FLOAT_FORMATS: [golden::float::FloatFormat; 5] = [
+    golden::float::FloatFormat::FP32,
+    golden::float::FloatFormat::E8M15,
+    golden::float::FloatFormat::BF16,
+    golden::float::FloatFormat::FP16,
+    golden::float::FloatFormat { e: 6, m: 5 },
+];
+
+/// Runs `$body` with `$t` bound to the `SlabFloat` type of a float format, or returns an error for a
+/// format without an instantiated block.
+#[macro_export]
+macro_rules! with_slab_float {
+    ($f:expr, $t:ident, $body:block) => {{
+        let f: &golden::float::FloatFormat = $f;
+        match (f.e, f.m) {
+            (8, 23) => {
+                type $t = $crate::SlabFloatE8M23;
+                Ok($body)
+            }
+            (8, 15) => {
+                type $t = $crate::SlabFloatE8M15;
+                Ok($body)
+            }
+            (8, 7) => {
+                type $t = $crate::SlabFloatE8M7;
+                Ok($body)
+            }
+            (5, 10) => {
+                type $t = $crate::SlabFloatE5M10;
+                Ok($body)
+            }
+            (6, 5) => {
+                type $t = $crate::SlabFloatE6M5;
+                Ok($body)
+            }
+            _ => Err(format!(
+                "no RTL instance for float format {}: instantiated are e8m23, e8m15, e8m7, e5m10, e6m5 \
+                 (add a type alias in rtl/src/lib.rs for another)",
+                f.name()
+            )),
+        }
+    }};
+}

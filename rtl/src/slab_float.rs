@@ -11,9 +11,14 @@
 //!    sign; the empty-box test ([`FpCmp`]); inverse bounds, t range and empty flag wait in [`Delay3`] lines.
 //! 2. clocks 4-6: six [`FpMul`] — `RD(e * m)`, `RU(x * m)`, the inverse bound chosen by the sign of `e`, `x`
 //!    (either zero counts as non-negative).
-//! 3. clock 7 (`_q7`): a NaN product (`0 x inf`) becomes `-inf` for an entry, `+inf` for an exit; first level
-//!    of the max (entry) and min (exit) trees, `max(a, b) = a < b ? b : a`, `min(a, b) = b < a ? b : a`.
-//! 4. clock 8 (`_q8`): last level and the hit decision; these registers drive the outputs.
+//! 3. clock 7 (`_q7`): a NaN product (`0 x inf`) becomes `-inf` for an entry, `+inf` for an exit.
+//! 4. clock 8 (`_q8`): first level of the max (entry) and min (exit) trees, `max(a, b) = a < b ? b : a`,
+//!    `min(a, b) = b < a ? b : a`.
+//! 5. clock 9 (`_q9`): last level, and the hit as the AND of the four pairwise `<=` of the first level's
+//!    entries and exits; these registers drive the outputs.
+//!
+//! Every comparator reads registers only: a comparator fed from logic that reads other children in the
+//! same `always` block is a combinational cycle at block granularity for Verilator (UNOPTFLAT).
 
 use crate::delay::Delay3;
 use crate::fp_add::{FpAdd, FP_ADD_LATENCY};
@@ -26,7 +31,7 @@ use golden::slab_float::{FloatBox, FloatRay, SlabFloatOut};
 use rust_hdl::prelude::*;
 
 /// Clocks from a test entering `SlabFloat` to its result leaving.
-pub const SLAB_FLOAT_LATENCY: usize = FP_ADD_LATENCY + FP_MUL_LATENCY + 2;
+pub const SLAB_FLOAT_LATENCY: usize = FP_ADD_LATENCY + FP_MUL_LATENCY + 3;
 
 /// The float slab tester; see the module documentation.
 #[derive(LogicBlock)]
@@ -69,26 +74,32 @@ pub struct SlabFloat<const E: usize, const M: usize, const N: usize> {
     // stage 2: products
     mul_e: [FpMul<E, M, N>; 3],
     mul_x: [FpMul<E, M, N>; 3],
-    // stage 3: NaN products resolved, first tree level
-    en: [Signal<Local, Bits<N>>; 3],
-    ex: [Signal<Local, Bits<N>>; 3],
-    cmp7: [FpCmp<N>; 4],
-    entry_a_q7: DFF<Bits<N>>,
-    entry_b_q7: DFF<Bits<N>>,
-    exit_a_q7: DFF<Bits<N>>,
-    exit_b_q7: DFF<Bits<N>>,
+    // stage 3: NaN products resolved
+    en_q7: [DFF<Bits<N>>; 3],
+    ex_q7: [DFF<Bits<N>>; 3],
+    t_min_q7: DFF<Bits<N>>,
+    t_max_q7: DFF<Bits<N>>,
     empty_q7: DFF<Bit>,
     valid_q7: DFF<Bit>,
     tag_q7: DFF<Bits<TAG_BITS>>,
-    // stage 4: last tree level, hit
-    cmp8: [FpCmp<N>; 3],
-    entry: Signal<Local, Bits<N>>,
-    exit: Signal<Local, Bits<N>>,
-    entry_q8: DFF<Bits<N>>,
-    exit_q8: DFF<Bits<N>>,
-    hit_q8: DFF<Bit>,
+    // stage 4: first tree level
+    cmp8: [FpCmp<N>; 4],
+    entry_a_q8: DFF<Bits<N>>,
+    entry_b_q8: DFF<Bits<N>>,
+    exit_a_q8: DFF<Bits<N>>,
+    exit_b_q8: DFF<Bits<N>>,
+    empty_q8: DFF<Bit>,
     valid_q8: DFF<Bit>,
     tag_q8: DFF<Bits<TAG_BITS>>,
+    // stage 5: last tree level and the hit, from four pairwise comparisons
+    cmp9: [FpCmp<N>; 6],
+    entry: Signal<Local, Bits<N>>,
+    exit: Signal<Local, Bits<N>>,
+    entry_q9: DFF<Bits<N>>,
+    exit_q9: DFF<Bits<N>>,
+    hit_q9: DFF<Bit>,
+    valid_q9: DFF<Bit>,
+    tag_q9: DFF<Bits<TAG_BITS>>,
     // valid/tag outputs of the units that do not carry the test's own (lint: read, by name, as unused)
     unused_handshake: Signal<Local, Bit>,
 }
@@ -139,24 +150,29 @@ impl<const E: usize, const M: usize, const N: usize> SlabFloat<E, M, N> {
             empty_d2: Default::default(),
             mul_e: muls(Rounding::Down),
             mul_x: muls(Rounding::Up),
-            en: Default::default(),
-            ex: Default::default(),
-            cmp7: std::array::from_fn(|_| FpCmp::new(inf)),
-            entry_a_q7: Default::default(),
-            entry_b_q7: Default::default(),
-            exit_a_q7: Default::default(),
-            exit_b_q7: Default::default(),
+            en_q7: Default::default(),
+            ex_q7: Default::default(),
+            t_min_q7: Default::default(),
+            t_max_q7: Default::default(),
             empty_q7: Default::default(),
             valid_q7: Default::default(),
             tag_q7: Default::default(),
             cmp8: std::array::from_fn(|_| FpCmp::new(inf)),
-            entry: Default::default(),
-            exit: Default::default(),
-            entry_q8: Default::default(),
-            exit_q8: Default::default(),
-            hit_q8: Default::default(),
+            entry_a_q8: Default::default(),
+            entry_b_q8: Default::default(),
+            exit_a_q8: Default::default(),
+            exit_b_q8: Default::default(),
+            empty_q8: Default::default(),
             valid_q8: Default::default(),
             tag_q8: Default::default(),
+            cmp9: std::array::from_fn(|_| FpCmp::new(inf)),
+            entry: Default::default(),
+            exit: Default::default(),
+            entry_q9: Default::default(),
+            exit_q9: Default::default(),
+            hit_q9: Default::default(),
+            valid_q9: Default::default(),
+            tag_q9: Default::default(),
             unused_handshake: Default::default(),
         }
     }
@@ -247,8 +263,9 @@ impl<const E: usize, const M: usize, const N: usize> Logic for SlabFloat<E, M, N
     #[hdl_gen]
     fn update(&mut self) {
         dff_setup!(
-            self, clock, entry_a_q7, entry_b_q7, exit_a_q7, exit_b_q7, empty_q7, valid_q7, tag_q7,
-            entry_q8, exit_q8, hit_q8, valid_q8, tag_q8
+            self, clock, t_min_q7, t_max_q7, empty_q7, valid_q7, tag_q7, entry_a_q8, entry_b_q8,
+            exit_a_q8, exit_b_q8, empty_q8, valid_q8, tag_q8, entry_q9, exit_q9, hit_q9, valid_q9,
+            tag_q9
         );
         self.t_min_d1.clock.next = self.clock.val();
         self.t_min_d2.clock.next = self.clock.val();
@@ -318,101 +335,129 @@ impl<const E: usize, const M: usize, const N: usize> Logic for SlabFloat<E, M, N
             } else {
                 self.mul_x[i].b.next = self.m_hi_d[i].q.val();
             }
-            // Stage 3 inputs: a NaN product (0 x inf) leaves the axis unconstrained.
+            // Stage 3: a NaN product (0 x inf) leaves the axis unconstrained.
+            self.en_q7[i].clock.next = self.clock.val();
+            self.ex_q7[i].clock.next = self.clock.val();
             if (self.mul_e[i].y.val() & self.mag_mask.val()) > self.pinf.val() {
-                self.en[i].next = self.ninf.val();
+                self.en_q7[i].d.next = self.ninf.val();
             } else {
-                self.en[i].next = self.mul_e[i].y.val();
+                self.en_q7[i].d.next = self.mul_e[i].y.val();
             }
             if (self.mul_x[i].y.val() & self.mag_mask.val()) > self.pinf.val() {
-                self.ex[i].next = self.pinf.val();
+                self.ex_q7[i].d.next = self.pinf.val();
             } else {
-                self.ex[i].next = self.mul_x[i].y.val();
+                self.ex_q7[i].d.next = self.mul_x[i].y.val();
             }
         }
-
-        // Stage 3: first level of the trees.
-        self.cmp7[0].a.next = self.t_min_d2.q.val();
-        self.cmp7[0].b.next = self.en[0].val();
-        if self.cmp7[0].lt.val() {
-            self.entry_a_q7.d.next = self.en[0].val();
-        } else {
-            self.entry_a_q7.d.next = self.t_min_d2.q.val();
-        }
-        self.cmp7[1].a.next = self.en[1].val();
-        self.cmp7[1].b.next = self.en[2].val();
-        if self.cmp7[1].lt.val() {
-            self.entry_b_q7.d.next = self.en[2].val();
-        } else {
-            self.entry_b_q7.d.next = self.en[1].val();
-        }
-        self.cmp7[2].a.next = self.ex[0].val();
-        self.cmp7[2].b.next = self.t_max_d2.q.val();
-        if self.cmp7[2].lt.val() {
-            self.exit_a_q7.d.next = self.ex[0].val();
-        } else {
-            self.exit_a_q7.d.next = self.t_max_d2.q.val();
-        }
-        self.cmp7[3].a.next = self.ex[2].val();
-        self.cmp7[3].b.next = self.ex[1].val();
-        if self.cmp7[3].lt.val() {
-            self.exit_b_q7.d.next = self.ex[2].val();
-        } else {
-            self.exit_b_q7.d.next = self.ex[1].val();
-        }
+        self.t_min_q7.d.next = self.t_min_d2.q.val();
+        self.t_max_q7.d.next = self.t_max_d2.q.val();
         self.empty_q7.d.next = self.empty_d2.q.val();
         self.valid_q7.d.next = self.mul_e[0].valid_out.val();
         self.tag_q7.d.next = self.mul_e[0].tag_out.val();
 
-        // Stage 4: last level and the hit decision.
-        self.cmp8[0].a.next = self.entry_a_q7.q.val();
-        self.cmp8[0].b.next = self.entry_b_q7.q.val();
+        // Stage 4: first level of the trees (comparators read registers only).
+        self.cmp8[0].a.next = self.t_min_q7.q.val();
+        self.cmp8[0].b.next = self.en_q7[0].q.val();
         if self.cmp8[0].lt.val() {
-            self.entry.next = self.entry_b_q7.q.val();
+            self.entry_a_q8.d.next = self.en_q7[0].q.val();
         } else {
-            self.entry.next = self.entry_a_q7.q.val();
+            self.entry_a_q8.d.next = self.t_min_q7.q.val();
         }
-        self.cmp8[1].a.next = self.exit_b_q7.q.val();
-        self.cmp8[1].b.next = self.exit_a_q7.q.val();
+        self.cmp8[1].a.next = self.en_q7[1].q.val();
+        self.cmp8[1].b.next = self.en_q7[2].q.val();
         if self.cmp8[1].lt.val() {
-            self.exit.next = self.exit_b_q7.q.val();
+            self.entry_b_q8.d.next = self.en_q7[2].q.val();
         } else {
-            self.exit.next = self.exit_a_q7.q.val();
+            self.entry_b_q8.d.next = self.en_q7[1].q.val();
         }
-        self.cmp8[2].a.next = self.entry.val();
-        self.cmp8[2].b.next = self.exit.val();
-        self.hit_q8.d.next = !self.empty_q7.q.val()
-            & self.cmp8[2].le.val()
-            & (self.entry.val() != self.pinf.val())
-            & (self.exit.val() != self.ninf.val());
-        self.entry_q8.d.next = self.entry.val();
-        self.exit_q8.d.next = self.exit.val();
+        self.cmp8[2].a.next = self.ex_q7[0].q.val();
+        self.cmp8[2].b.next = self.t_max_q7.q.val();
+        if self.cmp8[2].lt.val() {
+            self.exit_a_q8.d.next = self.ex_q7[0].q.val();
+        } else {
+            self.exit_a_q8.d.next = self.t_max_q7.q.val();
+        }
+        self.cmp8[3].a.next = self.ex_q7[2].q.val();
+        self.cmp8[3].b.next = self.ex_q7[1].q.val();
+        if self.cmp8[3].lt.val() {
+            self.exit_b_q8.d.next = self.ex_q7[2].q.val();
+        } else {
+            self.exit_b_q8.d.next = self.ex_q7[1].q.val();
+        }
+        self.empty_q8.d.next = self.empty_q7.q.val();
         self.valid_q8.d.next = self.valid_q7.q.val();
         self.tag_q8.d.next = self.tag_q7.q.val();
 
-        self.valid_out.next = self.valid_q8.q.val();
-        self.tag_out.next = self.tag_q8.q.val();
-        self.hit.next = self.hit_q8.q.val();
-        self.t_entry.next = self.entry_q8.q.val();
-        self.t_exit.next = self.exit_q8.q.val();
+        // Stage 5: entry = max(ea, eb), exit = min(xa, xb); entry <= exit is the AND of the four pairwise
+        // comparisons (equal to the model's le(entry, exit), NaN limits included: only t_min, t_max can be NaN).
+        self.cmp9[0].a.next = self.entry_a_q8.q.val();
+        self.cmp9[0].b.next = self.entry_b_q8.q.val();
+        if self.cmp9[0].lt.val() {
+            self.entry.next = self.entry_b_q8.q.val();
+        } else {
+            self.entry.next = self.entry_a_q8.q.val();
+        }
+        self.cmp9[1].a.next = self.exit_b_q8.q.val();
+        self.cmp9[1].b.next = self.exit_a_q8.q.val();
+        if self.cmp9[1].lt.val() {
+            self.exit.next = self.exit_b_q8.q.val();
+        } else {
+            self.exit.next = self.exit_a_q8.q.val();
+        }
+        self.cmp9[2].a.next = self.entry_a_q8.q.val();
+        self.cmp9[2].b.next = self.exit_a_q8.q.val();
+        self.cmp9[3].a.next = self.entry_a_q8.q.val();
+        self.cmp9[3].b.next = self.exit_b_q8.q.val();
+        self.cmp9[4].a.next = self.entry_b_q8.q.val();
+        self.cmp9[4].b.next = self.exit_a_q8.q.val();
+        self.cmp9[5].a.next = self.entry_b_q8.q.val();
+        self.cmp9[5].b.next = self.exit_b_q8.q.val();
+        self.hit_q9.d.next = !self.empty_q8.q.val()
+            & self.cmp9[2].le.val()
+            & self.cmp9[3].le.val()
+            & self.cmp9[4].le.val()
+            & self.cmp9[5].le.val()
+            & (self.entry.val() != self.pinf.val())
+            & (self.exit.val() != self.ninf.val());
+        self.entry_q9.d.next = self.entry.val();
+        self.exit_q9.d.next = self.exit.val();
+        self.valid_q9.d.next = self.valid_q8.q.val();
+        self.tag_q9.d.next = self.tag_q8.q.val();
 
-        // Handshake outputs of the units whose valid/tag the test does not follow.
+        self.valid_out.next = self.valid_q9.q.val();
+        self.tag_out.next = self.tag_q9.q.val();
+        self.hit.next = self.hit_q9.q.val();
+        self.t_entry.next = self.entry_q9.q.val();
+        self.t_exit.next = self.exit_q9.q.val();
+
+        // Outputs of the units that the test's own valid/tag do not follow, and unused comparator outputs.
         self.unused_handshake.next = self.add_e[1].valid_out.val()
             ^ self.add_e[2].valid_out.val()
+            ^ self.add_x[0].valid_out.val()
+            ^ self.add_x[1].valid_out.val()
+            ^ self.add_x[2].valid_out.val()
             ^ self.mul_e[1].valid_out.val()
             ^ self.mul_e[2].valid_out.val()
             ^ self.mul_x[0].valid_out.val()
             ^ self.mul_x[1].valid_out.val()
             ^ self.mul_x[2].valid_out.val()
-            ^ self.cmp8[0].le.val()
-            ^ self.cmp8[1].le.val()
-            ^ self.cmp7[0].le.val()
-            ^ self.cmp7[1].le.val()
-            ^ self.cmp7[2].le.val()
-            ^ self.cmp7[3].le.val()
+            ^ self.mul_e[1].tag_out.val().xor()
+            ^ self.mul_e[2].tag_out.val().xor()
+            ^ self.mul_x[0].tag_out.val().xor()
+            ^ self.mul_x[1].tag_out.val().xor()
+            ^ self.mul_x[2].tag_out.val().xor()
             ^ self.empty_cmp[0].le.val()
             ^ self.empty_cmp[1].le.val()
             ^ self.empty_cmp[2].le.val()
-            ^ self.cmp8[2].lt.val();
+            ^ self.cmp8[0].le.val()
+            ^ self.cmp8[1].le.val()
+            ^ self.cmp8[2].le.val()
+            ^ self.cmp8[3].le.val()
+            ^ self.cmp9[0].le.val()
+            ^ self.cmp9[1].le.val()
+            ^ self.cmp9[2].lt.val()
+            ^ self.cmp9[3].lt.val()
+            ^ self.cmp9[4].lt.val()
+            ^ self.cmp9[5].lt.val();
     }
 }

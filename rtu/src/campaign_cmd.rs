@@ -117,10 +117,17 @@ pub fn run(a: &Args, out: &Path) -> Result<(), String> {
             );
             let mut last = 0;
             let st = rtl::with_slab_fix!(fmt, S, {
-                tb::slab_fix_tb::xsim::<S, _>(*fmt, &h, vectors, true, |n| {
-                    pb.inc(n - last);
-                    last = n;
-                })
+                tb::slab_tb::xsim(
+                    *fmt,
+                    || S::new(fmt),
+                    &h,
+                    vectors,
+                    true,
+                    |n| {
+                        pb.inc(n - last);
+                        last = n;
+                    },
+                )
             })?;
             let secs = t.elapsed().as_secs_f64();
             pb.finish_and_clear();

@@ -1,7 +1,7 @@
 //! Streamed vector sources and campaigns: conservativeness of the bit-accurate model against the exact
 //! oracle, and cross-simulation of the exported Verilog. Nothing is stored: memory stays flat.
 
-use crate::slab_fix_tb::SlabVec;
+use crate::slab_tb::SlabVec;
 use glam::DVec3;
 use golden::check::{check_fix, Verdict};
 use golden::fixed::{FixBox, FixFormat, FixRay, GridMap};

@@ -3,7 +3,7 @@
 
 use crate::dut::PipelinedDut;
 use crate::rtl_sim::SlabFixRtl;
-use crate::slab_fix_tb::in_word;
+use crate::slab_tb::in_word;
 use golden::fixed::{FixBox, FixFormat, FixRay};
 use golden::slab_fix::{slab_fix, SlabFixOut};
 use rtl::export::{slab_fix_module, slab_fix_verilog};

@@ -9,13 +9,13 @@
 //! | [`verilator`] | builds a C++ harness around exported Verilog and streams vectors through it |
 //! | [`campaign`] | large streamed conservativeness and cross-simulation campaigns with progress |
 //! | [`strategies`] | proptest strategies over quantised slab vectors |
-//! | [`slab_fix_tb`] | the fixed slab tester's port encoding and cross-simulation loop |
+//! | [`slab_tb`] | port encoding and the cross-simulation loop, for both datapaths ([`slab_tb::SlabCtx`]) |
 
 pub mod campaign;
 pub mod dut;
 pub mod engine;
 pub mod rtl_sim;
-pub mod slab_fix_tb;
+pub mod slab_tb;
 pub mod strategies;
 pub mod vcd_read;
 pub mod verilator;

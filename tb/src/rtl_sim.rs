@@ -53,7 +53,8 @@ impl<S: SlabFloatIo> SlabRtl<S> {
 }
 
 impl<S: SlabIo> SlabRtl<S> {
-    fn wrap(mut uut: S) -> Self {
+    /// Wraps a block (connected here).
+    pub fn wrap(mut uut: S) -> Self {
         uut.connect_all();
         SlabRtl {
             uut,
@@ -62,7 +63,8 @@ impl<S: SlabIo> SlabRtl<S> {
         }
     }
 
-    fn vcd_to(mut self, path: &Path) -> std::io::Result<Self> {
+    /// Starts writing every signal of the block to a VCD file at `path`.
+    pub fn vcd_to(mut self, path: &Path) -> std::io::Result<Self> {
         if let Some(d) = path.parent() {
             std::fs::create_dir_all(d)?;
         }

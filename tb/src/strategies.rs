@@ -2,7 +2,7 @@
 //! and quantised world vectors from the adversarial generator.
 
 use crate::campaign::{campaign_map, world_gen};
-use crate::slab_fix_tb::SlabVec;
+use crate::slab_tb::SlabVec;
 use golden::fixed::{FixBox, FixFormat, FixRay};
 use golden::gen::GenKind;
 use proptest::prelude::*;

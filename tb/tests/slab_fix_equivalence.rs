@@ -11,7 +11,7 @@ use std::cell::RefCell;
 use std::hash::{Hash, Hasher};
 use tb::dut::run_checked;
 use tb::rtl_sim::SlabFixRtl;
-use tb::slab_fix_tb::SlabVec;
+use tb::slab_tb::SlabVec;
 use tb::strategies::slab_burst;
 
 const CASES: u32 = 10_000;

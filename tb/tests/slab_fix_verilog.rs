@@ -10,7 +10,7 @@ use rtl::slab_fix::SlabFixIo;
 use std::path::PathBuf;
 use std::process::Command;
 use tb::campaign::slab_vectors;
-use tb::slab_fix_tb::xsim;
+use tb::slab_tb::xsim;
 
 fn export(fmt: &FixFormat) -> (String, PathBuf) {
     let dir = tb::out_dir().join("verilog");
@@ -78,7 +78,7 @@ fn cross_simulate<S: SlabFixIo>(fmt: FixFormat, seed: u64) {
     let h = tb::verilator::build(&v, &slab_fix_module(&fmt), &tb::out_dir().join("verilator"))
         .unwrap_or_else(|e| panic!("{e}"));
     let vectors = slab_vectors(fmt, GenKind::Mixed, seed, XSIM_VECTORS, true);
-    let stats = xsim::<S, _>(fmt, &h, vectors, true, |_| {})
+    let stats = xsim(fmt, || S::for_format(&fmt), &h, vectors, true, |_| {})
         .unwrap_or_else(|e| panic!("{}: {e}", fmt.name()));
     assert_eq!(stats.tests, XSIM_VECTORS);
     assert!(
@@ -116,8 +116,15 @@ fn a_wrong_verilog_is_caught_and_leaves_a_vcd() {
     .unwrap_or_else(|e| panic!("{e}"));
     let b12 = FixFormat::b12();
     let vectors = slab_vectors(b12, GenKind::Mixed, 4, 10_000, true);
-    let err = xsim::<rtl::SlabFixB12, _>(b12, &h, vectors, true, |_| {})
-        .expect_err("b8 Verilog passed as b12");
+    let err = xsim(
+        b12,
+        || rtl::SlabFixB12::new(&b12),
+        &h,
+        vectors,
+        true,
+        |_| {},
+    )
+    .expect_err("b8 Verilog passed as b12");
     let vcd = err.rsplit("(rust-hdl): ").next().unwrap().trim();
     assert!(
         std::path::Path::new(vcd).exists(),

@@ -1,20 +1,105 @@
-//! The fixed slab tester's testbench glue: port encoding for the Verilator harness, and the
-//! cross-simulation loop that checks Verilator against the rust-hdl simulation and the model.
+//! Testbench glue shared by the slab testers of both datapaths: port encoding for the Verilator harness,
+//! and the cross-simulation loop that checks Verilator against the rust-hdl simulation and the model.
 
 use crate::dut::PipelinedDut;
-use crate::rtl_sim::SlabFixRtl;
+use crate::rtl_sim::SlabRtl;
 use crate::verilator::Harness;
 use golden::fixed::{FixBox, FixFormat, FixRay};
-use golden::slab_fix::slab_fix;
-use rtl::slab_fix::{code, SlabFixIo};
+use golden::float::FloatFormat;
+use golden::slab_fix::{slab_fix, SlabFixOut};
+use golden::slab_float::{slab_float, FloatBox, FloatRay, SlabFloatOut};
+use rtl::slab_fix::code;
+use rtl::SlabIo;
 use std::collections::VecDeque;
+use std::fmt::Debug;
 use std::sync::mpsc::sync_channel;
 
-/// One slab test for the pipeline: `None` is a bubble.
+/// One fixed slab test for the pipeline: `None` is a bubble.
 pub type SlabVec = Option<(FixRay, FixBox)>;
 
+/// What a testbench must know of a datapath's format: how a test becomes port values, the bit-accurate
+/// model, and the fields of a result as port values. Implemented by `FixFormat` and `FloatFormat`.
+pub trait SlabCtx: Copy + Send + Sync + Debug + 'static {
+    type Ray: Clone + Copy + Debug + PartialEq + Send + 'static;
+    type Box: Clone + Copy + Debug + PartialEq + Send + 'static;
+    type Out: Clone + Copy + Debug + PartialEq;
+    /// Name of the format, for messages and files.
+    fn name(&self) -> String;
+    /// Value of data input `base[idx]` (`ray_o_lo`, `box_hi`, ...; `idx` 0 for scalars).
+    fn port_value(&self, base: &str, idx: usize, r: &Self::Ray, b: &Self::Box) -> Option<u64>;
+    /// The bit-accurate model.
+    fn model(&self, r: &Self::Ray, b: &Self::Box) -> Self::Out;
+    /// `(hit, t_entry, t_exit)` of a result, as port values.
+    fn out_fields(&self, o: &Self::Out) -> (bool, u64, u64);
+}
+
+impl SlabCtx for FixFormat {
+    type Ray = FixRay;
+    type Box = FixBox;
+    type Out = SlabFixOut;
+    fn name(&self) -> String {
+        FixFormat::name(self)
+    }
+    fn port_value(&self, base: &str, idx: usize, r: &FixRay, b: &FixBox) -> Option<u64> {
+        let (g, t) = (self.g as usize, self.t as usize);
+        Some(match base {
+            "ray_o_lo" => code(r.o_lo[idx], g),
+            "ray_o_hi" => code(r.o_hi[idx], g),
+            "ray_m_lo" => r.m_lo[idx],
+            "ray_m_hi" => r.m_hi[idx],
+            "ray_neg" => r.neg[idx] as u64,
+            "ray_t_min" => code(r.t_min, t),
+            "ray_t_max" => code(r.t_max, t),
+            "box_lo" => code(b.lo[idx], g),
+            "box_hi" => code(b.hi[idx], g),
+            _ => return None,
+        })
+    }
+    fn model(&self, r: &FixRay, b: &FixBox) -> SlabFixOut {
+        slab_fix(self, r, b)
+    }
+    fn out_fields(&self, o: &SlabFixOut) -> (bool, u64, u64) {
+        let t = self.t as usize;
+        (o.hit, code(o.t_entry, t), code(o.t_exit, t))
+    }
+}
+
+impl SlabCtx for FloatFormat {
+    type Ray = FloatRay;
+    type Box = FloatBox;
+    type Out = SlabFloatOut;
+    fn name(&self) -> String {
+        FloatFormat::name(self)
+    }
+    fn port_value(&self, base: &str, idx: usize, r: &FloatRay, b: &FloatBox) -> Option<u64> {
+        Some(match base {
+            "ray_o_lo" => r.o_lo[idx] as u64,
+            "ray_o_hi" => r.o_hi[idx] as u64,
+            "ray_m_lo" => r.m_lo[idx] as u64,
+            "ray_m_hi" => r.m_hi[idx] as u64,
+            "ray_neg" => r.neg[idx] as u64,
+            "ray_t_min" => r.t_min as u64,
+            "ray_t_max" => r.t_max as u64,
+            "box_lo" => b.lo[idx] as u64,
+            "box_hi" => b.hi[idx] as u64,
+            _ => return None,
+        })
+    }
+    fn model(&self, r: &FloatRay, b: &FloatBox) -> SlabFloatOut {
+        slab_float(self, r, b)
+    }
+    fn out_fields(&self, o: &SlabFloatOut) -> (bool, u64, u64) {
+        (o.hit, o.t_entry as u64, o.t_exit as u64)
+    }
+}
+
 /// The value of input port `port` (a Verilog name such as `ray_o_lo$1`) for one cycle.
-pub fn in_word(fmt: &FixFormat, port: &str, tag: u16, v: &SlabVec) -> Result<u64, String> {
+pub fn in_word<C: SlabCtx>(
+    ctx: &C,
+    port: &str,
+    tag: u16,
+    v: &Option<(C::Ray, C::Box)>,
+) -> Result<u64, String> {
     let (base, idx) = match port.split_once('$') {
         Some((b, i)) => (
             b,
@@ -23,36 +108,28 @@ pub fn in_word(fmt: &FixFormat, port: &str, tag: u16, v: &SlabVec) -> Result<u64
         ),
         None => (port, 0),
     };
-    let (g, t) = (fmt.g as usize, fmt.t as usize);
     let Some((r, b)) = v else {
         return Ok(0); // a bubble: valid_in low, data don't care (driven as zero)
     };
-    Ok(match base {
-        "valid_in" => 1,
-        "tag_in" => tag as u64,
-        "ray_o_lo" => code(r.o_lo[idx], g),
-        "ray_o_hi" => code(r.o_hi[idx], g),
-        "ray_m_lo" => r.m_lo[idx],
-        "ray_m_hi" => r.m_hi[idx],
-        "ray_neg" => r.neg[idx] as u64,
-        "ray_t_min" => code(r.t_min, t),
-        "ray_t_max" => code(r.t_max, t),
-        "box_lo" => code(b.lo[idx], g),
-        "box_hi" => code(b.hi[idx], g),
-        _ => return Err(format!("unknown input port {port}")),
-    })
+    match base {
+        "valid_in" => Ok(1),
+        "tag_in" => Ok(tag as u64),
+        _ => ctx
+            .port_value(base, idx, r, b)
+            .ok_or_else(|| format!("unknown input port {port}")),
+    }
 }
 
 /// Cycles replayed into the VCD written when a cross-simulation cycle fails.
 pub const XSIM_VCD_WINDOW: usize = 32;
 
-/// Drives `cycles` (tag and vector, or bubble) through block `S` writing a VCD at `path`.
-pub fn replay_vcd<S: SlabFixIo>(
-    fmt: FixFormat,
-    cycles: &VecDeque<(u16, SlabVec)>,
+/// Drives `cycles` (tag and vector, or bubble) through a block made by `make`, writing a VCD at `path`.
+pub fn replay_vcd<S: SlabIo>(
+    make: impl Fn() -> S,
+    cycles: &VecDeque<(u16, Option<(S::Ray, S::Box)>)>,
     path: &std::path::Path,
 ) -> std::io::Result<()> {
-    let mut sim = SlabFixRtl::<S>::with_vcd(&fmt, path)?;
+    let mut sim = SlabRtl::wrap(make()).vcd_to(path)?;
     for (tag, v) in cycles {
         sim.step(v.as_ref().map(|x| (*tag, x)));
     }
@@ -75,21 +152,23 @@ pub struct XsimStats {
 /// every cycle and every other output port of every valid cycle against the rust-hdl simulation of block
 /// `S` driven with the same inputs.
 /// `progress(tests)` is called every 65,536 cycles.
-pub fn xsim<S, It>(
-    fmt: FixFormat,
+pub fn xsim<C, S, It>(
+    fmt: C,
+    make: impl Fn() -> S,
     harness: &Harness,
     vectors: It,
     lockstep_rtl: bool,
     mut progress: impl FnMut(u64),
 ) -> Result<XsimStats, String>
 where
-    S: SlabFixIo,
-    It: Iterator<Item = SlabVec> + Send + 'static,
+    C: SlabCtx,
+    S: SlabIo<Ray = C::Ray, Box = C::Box, Out = C::Out>,
+    It: Iterator<Item = Option<(C::Ray, C::Box)>> + Send + 'static,
 {
     let ports: Vec<String> = harness.inputs.iter().map(|p| p.name.clone()).collect();
-    let (tx, rx) = sync_channel::<(u16, SlabVec)>(1 << 16);
+    let (tx, rx) = sync_channel::<(u16, Option<(C::Ray, C::Box)>)>(1 << 16);
     let mut tag = 0u16;
-    let lat = rtl::SLAB_FIX_LATENCY as u64;
+    let lat = S::LATENCY as u64;
     // Flush the pipeline after the last vector.
     let records = vectors
         .chain(std::iter::repeat_n(None, lat as usize + 1))
@@ -113,15 +192,14 @@ where
     let ien = harness.output_index("t_entry").ok_or("no t_entry port")?;
     let iex = harness.output_index("t_exit").ok_or("no t_exit port")?;
     let mut rtl = if lockstep_rtl {
-        Some(SlabFixRtl::<S>::new(&fmt))
+        Some(SlabRtl::wrap(make()))
     } else {
         None
     };
-    let mut pending: VecDeque<(u64, u16, FixRay, FixBox)> = VecDeque::new();
+    let mut pending: VecDeque<(u64, u16, C::Ray, C::Box)> = VecDeque::new();
     let mut stats = XsimStats::default();
-    let t = fmt.t as usize;
     // The last cycles' inputs, replayed into a VCD when a cycle fails.
-    let mut recent: VecDeque<(u16, SlabVec)> = VecDeque::new();
+    let mut recent: VecDeque<(u16, Option<(C::Ray, C::Box)>)> = VecDeque::new();
     let mut last_cycle = 0u64;
     let cycles = harness.stream(records, |cycle, out| {
         let (tg, v) = rx.recv().map_err(|_| "producer ended early".to_string())?;
@@ -154,9 +232,10 @@ where
             (false, false) => {}
             (true, true) => {
                 let (_, etag, r, b) = pending.pop_front().unwrap();
-                let exp = slab_fix(&fmt, &r, &b);
+                let exp = fmt.model(&r, &b);
+                let (hit, en, ex) = fmt.out_fields(&exp);
                 let got = (out[it] as u16, out[ih] != 0, out[ien], out[iex]);
-                let want = (etag, exp.hit, code(exp.t_entry, t), code(exp.t_exit, t));
+                let want = (etag, hit, en, ex);
                 if got != want {
                     return Err(format!(
                         "cycle {}: Verilator gives (tag, hit, entry, exit) = {got:?}, the model {want:?}\n  ray {r:?}\n  box {b:?}",
@@ -164,7 +243,7 @@ where
                     ));
                 }
                 stats.tests += 1;
-                stats.hits += exp.hit as u64;
+                stats.hits += hit as u64;
             }
             (v, _) => {
                 return Err(format!(
@@ -182,7 +261,7 @@ where
     .map_err(|e| {
         let name = format!("xsim_{}_cycle{}.vcd", fmt.name(), last_cycle + 1);
         let path = crate::out_dir().join("vcd").join(name);
-        match replay_vcd::<S>(fmt, &recent, &path) {
+        match replay_vcd(&make, &recent, &path) {
             Ok(()) => format!("{e}\n  waveform of the last {} cycles (rust-hdl): {}", recent.len(), path.display()),
             Err(w) => format!("{e}\n  (no waveform: {w})"),
         }
