@@ -84,6 +84,25 @@ impl FloatFormat {
     /// An 8-bit format (E4M3 with IEEE infinities), small enough to test exhaustively.
     pub const E4M3: FloatFormat = FloatFormat { e: 4, m: 3 };
 
+    /// Parses `fp32`, `fp16`, `bf16` or `eXmY` (e.g. `e8m15`), case-insensitive.
+    pub fn parse(s: &str) -> Result<Self, Error> {
+        let l = s.to_ascii_lowercase();
+        match l.as_str() {
+            "fp32" => return Ok(Self::FP32),
+            "fp16" => return Ok(Self::FP16),
+            "bf16" => return Ok(Self::BF16),
+            _ => {}
+        }
+        let bad = || {
+            Error::Io(format!(
+                "float format `{s}`: expected fp32, fp16, bf16 or eXmY such as e8m15"
+            ))
+        };
+        let rest = l.strip_prefix('e').ok_or_else(bad)?;
+        let (e, m) = rest.split_once('m').ok_or_else(bad)?;
+        Self::new(e.parse().map_err(|_| bad())?, m.parse().map_err(|_| bad())?)
+    }
+
     /// Name used in module names and reports, e.g. `e8m23`.
     pub fn name(&self) -> String {
         format!("e{}m{}", self.e, self.m)

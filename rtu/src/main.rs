@@ -49,10 +49,12 @@ enum Cmd {
         /// model, rtl or verilator.
         #[arg(long, default_value = "model")]
         engine: tb::engine::Engine,
-        /// Fixed-point format: b8, b12, b16 or G,I,FI,T,FT (rtl and verilator take the presets).
+        /// Format: fixed b8, b12, b16 or G,I,FI,T,FT; float fp32, fp16, bf16 or eXmY. The rtl and verilator
+        /// engines take the instantiated ones (fixed presets; e8m23, e8m15, e8m7, e5m10, e6m5).
         #[arg(long, default_value = "b16")]
         format: String,
-        /// Scene bounds `x0,y0,z0,x1,y1,z1` for the grid; by default the bounds of the file's origins and boxes.
+        /// Fixed formats: scene bounds `x0,y0,z0,x1,y1,z1` for the grid; by default the bounds of the file's
+        /// origins and boxes.
         #[arg(long)]
         bounds: Option<String>,
         /// Write a waveform of the run here (rtl engine).

@@ -10,7 +10,7 @@ use golden::slab_ref::slab_ref;
 use std::fmt::Write as _;
 use std::path::Path;
 use std::time::Instant;
-use tb::engine::{run_engine, Engine};
+use tb::engine::{run_fix, Engine};
 
 /// One row of the summary.
 pub struct Row {
@@ -106,7 +106,7 @@ pub fn run(scene: &Scene, out: &Path) -> Result<(Vec<Row>, String), String> {
             (0..n).map(move |i| (i, rays[i / nb], boxes[i % nb]))
         };
         let mut model = vec![SlabFixOut::default(); n];
-        run_engine(
+        run_fix(
             Engine::Model,
             fmt,
             tests(),
@@ -119,7 +119,7 @@ pub fn run(scene: &Scene, out: &Path) -> Result<(Vec<Row>, String), String> {
         )?;
         let t = Instant::now();
         let mut rtl = vec![SlabFixOut::default(); n];
-        run_engine(Engine::Rtl, fmt, tests(), Path::new(""), None, |i, _, o| {
+        run_fix(Engine::Rtl, fmt, tests(), Path::new(""), None, |i, _, o| {
             rtl[i] = o;
             Ok(())
         })?;

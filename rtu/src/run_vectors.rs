@@ -2,14 +2,17 @@
 
 use glam::DVec3;
 use golden::fixed::{FixFormat, GridMap};
+use golden::float::FloatFormat;
 use golden::gen::{GenKind, SlabGen};
+use golden::slab_float::{quantize_box, quantize_ray};
 use golden::vectors::{
     csv_vector_header, read_vectors, write_header, write_result, write_vector, VecFormat, Vector,
 };
 use std::io::{BufRead, BufReader, BufWriter, Read, Write};
 use std::path::Path;
 use std::sync::{Arc, Mutex};
-use tb::engine::{run_engine, Engine};
+use tb::engine::{run_fix, run_float, Engine};
+use tb::slab_tb::SlabCtx;
 
 fn parse_bounds(s: &str) -> Result<(DVec3, DVec3), String> {
     let v: Vec<f64> = s
@@ -60,7 +63,8 @@ fn vectors_of(
     read_vectors(reader, fmt, src)
 }
 
-/// Runs a vector file through `engine` and writes results in the input's format.
+/// Runs a vector file through `engine` on the fixed (`b8`, `b12`, `b16`, `G,I,FI,T,FT`) or float (`fp32`,
+/// `fp16`, `bf16`, `eXmY`) tester of `format`, and writes results in the input's format.
 #[allow(clippy::too_many_arguments)]
 pub fn run(
     input: &Path,
@@ -71,7 +75,6 @@ pub fn run(
     vcd: Option<&Path>,
     out: &Path,
 ) -> Result<(), String> {
-    let fmt = FixFormat::parse(format).map_err(|e| e.to_string())?;
     let vfmt = if input == Path::new("-") {
         VecFormat::JsonLines
     } else {
@@ -79,48 +82,6 @@ pub fn run(
     };
     let src = input.display().to_string();
     let bytes = Arc::new(slurp(input)?);
-    // First pass: validate every line and find the bounds.
-    let (lo, hi) = match bounds {
-        Some(b) => parse_bounds(b)?,
-        None => {
-            let mut lo = DVec3::splat(f64::INFINITY);
-            let mut hi = DVec3::splat(f64::NEG_INFINITY);
-            for v in vectors_of(bytes.clone(), vfmt, src.clone()) {
-                let v = v.map_err(|e| e.to_string())?;
-                lo = lo.min(v.ray.origin);
-                hi = hi.max(v.ray.origin);
-                if !v.bx.is_empty() {
-                    lo = lo.min(v.bx.min);
-                    hi = hi.max(v.bx.max);
-                }
-            }
-            if !lo.is_finite() {
-                return Err(format!("{src}: no vectors"));
-            }
-            (lo, hi)
-        }
-    };
-    let map = GridMap::for_bounds(fmt, lo, hi).map_err(|e| e.to_string())?;
-    // Second pass, streamed: quantise and run. The first error stops the stream and is reported.
-    let failure: Arc<Mutex<Option<String>>> = Arc::new(Mutex::new(None));
-    let fail = failure.clone();
-    let tests = vectors_of(bytes, vfmt, src).map_while(move |v| {
-        let r = v.map_err(|e| e.to_string()).and_then(|v| {
-            let q = |e: golden::Error| format!("vector with tag {}: {e}", v.tag);
-            Ok((
-                v.tag,
-                map.quantize_ray(&v.ray).map_err(q)?,
-                map.quantize_box(&v.bx).map_err(q)?,
-            ))
-        });
-        match r {
-            Ok(t) => Some(t),
-            Err(e) => {
-                *fail.lock().unwrap() = Some(e);
-                None
-            }
-        }
-    });
     let mut w: Box<dyn Write> = match output {
         Some(p) => Box::new(BufWriter::new(
             std::fs::File::create(p).map_err(|e| format!("{}: {e}", p.display()))?,
@@ -128,34 +89,100 @@ pub fn run(
         None => Box::new(BufWriter::new(std::io::stdout())),
     };
     write_header(&mut w, vfmt).map_err(|e| e.to_string())?;
-    let n = run_engine(
-        engine,
-        fmt,
-        tests,
-        &out.join("verilator"),
-        vcd,
-        |tag, r, o| {
-            write_result(
-                &mut w,
-                vfmt,
-                tag,
-                o.hit,
-                r.t_world_f64(&fmt, o.t_entry),
-                r.t_world_f64(&fmt, o.t_exit),
-            )
-            .map_err(|e| e.to_string())
-        },
-    )?;
+    let failure: Arc<Mutex<Option<String>>> = Arc::new(Mutex::new(None));
+    let vdir = out.join("verilator");
+    let lower = format.to_ascii_lowercase();
+    let looks_float = lower.starts_with('e') || lower.starts_with("fp") || lower.starts_with("bf");
+    let (n, what) = if looks_float {
+        let f = FloatFormat::parse(format).map_err(|e| e.to_string())?;
+        let tests = quantized(bytes, vfmt, src, failure.clone(), move |v| {
+            Ok((quantize_ray(&f, &v.ray)?, quantize_box(&f, &v.bx)?))
+        });
+        let n = run_float(engine, f, tests, &vdir, vcd, |tag, r, o| {
+            emit(&mut w, vfmt, tag, f.world(r, &o))
+        })?;
+        (n, format!("float format {}", f.name()))
+    } else {
+        let fmt = FixFormat::parse(format)
+            .map_err(|e| format!("{e} (or a float format: fp32, fp16, bf16, eXmY)"))?;
+        let (lo, hi) = match bounds {
+            Some(b) => parse_bounds(b)?,
+            None => file_bounds(bytes.clone(), vfmt, &src)?,
+        };
+        let map = GridMap::for_bounds(fmt, lo, hi).map_err(|e| e.to_string())?;
+        let tests = quantized(bytes, vfmt, src, failure.clone(), move |v| {
+            Ok((map.quantize_ray(&v.ray)?, map.quantize_box(&v.bx)?))
+        });
+        let n = run_fix(engine, fmt, tests, &vdir, vcd, |tag, r, o| {
+            emit(&mut w, vfmt, tag, fmt.world(r, &o))
+        })?;
+        (
+            n,
+            format!(
+                "format {}, grid cell {}",
+                fmt.name(),
+                golden::fixed::ldexp(1.0, map.k)
+            ),
+        )
+    };
     w.flush().map_err(|e| e.to_string())?;
     if let Some(e) = failure.lock().unwrap().take() {
         return Err(e);
     }
-    eprintln!(
-        "rtu run: {n} vectors through the {engine:?} engine, format {}, grid cell {}",
-        fmt.name(),
-        golden::fixed::ldexp(1.0, map.k)
-    );
+    eprintln!("rtu run: {n} vectors through the {engine:?} engine, {what}");
     Ok(())
+}
+
+fn emit(
+    w: &mut Box<dyn Write>,
+    vfmt: VecFormat,
+    tag: u64,
+    (hit, en, ex): (bool, f64, f64),
+) -> Result<(), String> {
+    write_result(w, vfmt, tag, hit, en, ex).map_err(|e| e.to_string())
+}
+
+/// Bounds of the origins and non-empty boxes of a vector file (validating every line on the way).
+fn file_bounds(bytes: Arc<Vec<u8>>, vfmt: VecFormat, src: &str) -> Result<(DVec3, DVec3), String> {
+    let mut lo = DVec3::splat(f64::INFINITY);
+    let mut hi = DVec3::splat(f64::NEG_INFINITY);
+    for v in vectors_of(bytes, vfmt, src.to_string()) {
+        let v = v.map_err(|e| e.to_string())?;
+        lo = lo.min(v.ray.origin);
+        hi = hi.max(v.ray.origin);
+        if !v.bx.is_empty() {
+            lo = lo.min(v.bx.min);
+            hi = hi.max(v.bx.max);
+        }
+    }
+    if !lo.is_finite() {
+        return Err(format!("{src}: no vectors"));
+    }
+    Ok((lo, hi))
+}
+
+/// The file's vectors quantised by `q`, streamed; the first error stops the stream and is kept in `failure`.
+fn quantized<R, B>(
+    bytes: Arc<Vec<u8>>,
+    vfmt: VecFormat,
+    src: String,
+    failure: Arc<Mutex<Option<String>>>,
+    q: impl Fn(&Vector) -> Result<(R, B), golden::Error> + Send + 'static,
+) -> impl Iterator<Item = (u64, R, B)> + Send + 'static {
+    vectors_of(bytes, vfmt, src).map_while(move |v| {
+        let r = v.map_err(|e| e.to_string()).and_then(|v| {
+            q(&v)
+                .map(|(r, b)| (v.tag, r, b))
+                .map_err(|e| format!("vector with tag {}: {e}", v.tag))
+        });
+        match r {
+            Ok(t) => Some(t),
+            Err(e) => {
+                *failure.lock().unwrap() = Some(e);
+                None
+            }
+        }
+    })
 }
 
 /// Writes `n` generated vectors over the campaign bounds.

@@ -31,6 +31,10 @@ pub trait SlabCtx: Copy + Send + Sync + Debug + 'static {
     fn model(&self, r: &Self::Ray, b: &Self::Box) -> Self::Out;
     /// `(hit, t_entry, t_exit)` of a result, as port values.
     fn out_fields(&self, o: &Self::Out) -> (bool, u64, u64);
+    /// A result from its port values.
+    fn out_from_fields(&self, hit: bool, t_entry: u64, t_exit: u64) -> Self::Out;
+    /// `(hit, t_entry, t_exit)` with t in world units (exact; the end codes as infinities).
+    fn world(&self, r: &Self::Ray, o: &Self::Out) -> (bool, f64, f64);
 }
 
 impl SlabCtx for FixFormat {
@@ -62,6 +66,21 @@ impl SlabCtx for FixFormat {
         let t = self.t as usize;
         (o.hit, code(o.t_entry, t), code(o.t_exit, t))
     }
+    fn out_from_fields(&self, hit: bool, t_entry: u64, t_exit: u64) -> SlabFixOut {
+        let t = self.t as usize;
+        SlabFixOut {
+            hit,
+            t_entry: rtl::slab_fix::sext(t_entry, t),
+            t_exit: rtl::slab_fix::sext(t_exit, t),
+        }
+    }
+    fn world(&self, r: &FixRay, o: &SlabFixOut) -> (bool, f64, f64) {
+        (
+            o.hit,
+            r.t_world_f64(self, o.t_entry),
+            r.t_world_f64(self, o.t_exit),
+        )
+    }
 }
 
 impl SlabCtx for FloatFormat {
@@ -90,6 +109,16 @@ impl SlabCtx for FloatFormat {
     }
     fn out_fields(&self, o: &SlabFloatOut) -> (bool, u64, u64) {
         (o.hit, o.t_entry as u64, o.t_exit as u64)
+    }
+    fn out_from_fields(&self, hit: bool, t_entry: u64, t_exit: u64) -> SlabFloatOut {
+        SlabFloatOut {
+            hit,
+            t_entry: t_entry as u32,
+            t_exit: t_exit as u32,
+        }
+    }
+    fn world(&self, _: &FloatRay, o: &SlabFloatOut) -> (bool, f64, f64) {
+        (o.hit, self.to_f64(o.t_entry), self.to_f64(o.t_exit))
     }
 }
 

@@ -1,4 +1,5 @@
 //! Waveforms: the rust-hdl simulation writes a VCD on request; reading it back with the `vcd` crate,
+//! for the fixed and the float tester,
 //! `valid_out` rises exactly SLAB_FIX_LATENCY clock edges after `valid_in`, for single tests separated
 //! by bubbles and for a back-to-back burst.
 
@@ -38,6 +39,46 @@ fn valid_leaves_latency_clocks_after_it_enters() {
         assert_eq!(
             trace.edges_between(*i, *o),
             rtl::SLAB_FIX_LATENCY,
+            "valid_in at {i}, valid_out at {o}"
+        );
+    }
+}
+
+/// The same for the float tester (binary16): `valid_out` rises SLAB_FLOAT_LATENCY edges after `valid_in`.
+#[test]
+fn float_valid_leaves_latency_clocks_after_it_enters() {
+    use golden::float::FloatFormat;
+    use golden::slab_float::{quantize_box, quantize_ray, slab_float};
+    let f = FloatFormat::FP16;
+    let path = tb::out_dir()
+        .join("vcd")
+        .join("slab_float_e5m10_latency.vcd");
+    let (lo, hi) = tb::campaign::campaign_bounds();
+    let tests: Vec<_> = golden::gen::SlabGen::new(GenKind::Mixed, lo, hi, 1.0 / 64.0, 12)
+        .take(4)
+        .map(|(r, b)| Some((quantize_ray(&f, &r).unwrap(), quantize_box(&f, &b).unwrap())))
+        .collect();
+    let mut stream = vec![tests[0]];
+    stream.extend(std::iter::repeat_n(None, 12));
+    stream.extend(tests[1..].iter().cloned());
+    {
+        let mut dut =
+            tb::rtl_sim::SlabFloatRtl::<rtl::SlabFloatE5M10>::float_with_vcd(&path).unwrap();
+        let n = run_checked(&mut dut, stream, |v| slab_float(&f, &v.0, &v.1))
+            .unwrap_or_else(|e| panic!("{e}"));
+        assert_eq!(n, 4);
+    }
+    let trace = read_trace(&path, &["valid_in", "valid_out"]).unwrap();
+    let (ins, outs) = (trace.rises("valid_in"), trace.rises("valid_out"));
+    assert_eq!(
+        (ins.len(), outs.len()),
+        (2, 2),
+        "valid_in rises at {ins:?}, valid_out at {outs:?}"
+    );
+    for (i, o) in ins.iter().zip(&outs) {
+        assert_eq!(
+            trace.edges_between(*i, *o),
+            rtl::SLAB_FLOAT_LATENCY,
             "valid_in at {i}, valid_out at {o}"
         );
     }
