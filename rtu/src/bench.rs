@@ -158,7 +158,7 @@ pub fn run(a: &Args, out: &Path) -> Result<(), String> {
         let n = a.stream_tests * k;
         let vectors = tb::campaign::slab_vectors(fmt, GenKind::Mixed, 5, n, true);
         rtl::with_slab_fix!(&fmt, S, {
-            tb::slab_tb::xsim(fmt, || S::new(&fmt), &h, vectors, false, |_| {})
+            tb::slab_tb::xsim(fmt, || S::new(&fmt), &h, vectors, 0, |_| {})
         })??;
         rss.push((n, peak_rss_kib().unwrap_or(0)));
     }

@@ -52,18 +52,15 @@ pub fn raw_fix_vector(fmt: &FixFormat, rng: &mut Pcg64) -> (FixRay, FixBox) {
     (r, b)
 }
 
-/// `n` quantised test vectors for the pipeline from a seeded stream: world vectors of `kind` quantised on
-/// the campaign grid, one in eight replaced by a raw-code vector, and (when `bubbles`) about one cycle in
-/// eight a bubble.
-pub fn slab_vectors(
-    fmt: FixFormat,
-    kind: GenKind,
+/// A stream of `n` pipeline tests: `world()` vectors, one in eight replaced by `raw(rng)`, and (when
+/// `bubbles`) about one cycle in eight a bubble.
+fn test_stream<T: Send + 'static>(
     seed: u64,
     n: u64,
     bubbles: bool,
-) -> impl Iterator<Item = SlabVec> + Send + 'static {
-    let map = campaign_map(fmt);
-    let mut gen = world_gen(&map, kind, seed);
+    mut world: impl FnMut() -> T + Send + 'static,
+    mut raw: impl FnMut(&mut Pcg64) -> T + Send + 'static,
+) -> impl Iterator<Item = Option<T>> + Send + 'static {
     let mut rng = Pcg64::seed_from_u64(seed ^ 0x9e37_79b9_7f4a_7c15);
     let mut left = n;
     std::iter::from_fn(move || {
@@ -74,14 +71,82 @@ pub fn slab_vectors(
             return Some(None);
         }
         left -= 1;
-        if rng.gen_ratio(1, 8) {
-            return Some(Some(raw_fix_vector(&fmt, &mut rng)));
-        }
+        Some(Some(if rng.gen_ratio(1, 8) {
+            raw(&mut rng)
+        } else {
+            world()
+        }))
+    })
+}
+
+/// `n` quantised fixed-point test vectors from a seeded stream: world vectors of `kind` quantised on the
+/// campaign grid, one in eight a raw-code vector, and (when `bubbles`) about one cycle in eight a bubble.
+pub fn slab_vectors(
+    fmt: FixFormat,
+    kind: GenKind,
+    seed: u64,
+    n: u64,
+    bubbles: bool,
+) -> impl Iterator<Item = SlabVec> + Send + 'static {
+    let map = campaign_map(fmt);
+    let mut gen = world_gen(&map, kind, seed);
+    let world = move || {
         let (r, b) = gen.next().expect("endless");
-        Some(Some((
+        (
             map.quantize_ray(&r).expect("campaign vectors fit the grid"),
             map.quantize_box(&b).expect("campaign vectors fit the grid"),
-        )))
+        )
+    };
+    test_stream(seed, n, bubbles, world, move |rng| {
+        raw_fix_vector(&fmt, rng)
+    })
+}
+
+/// A float vector with every field any pattern of the format (NaN included), specials weighted up.
+pub fn raw_float_vector(
+    f: &golden::float::FloatFormat,
+    rng: &mut Pcg64,
+) -> (golden::slab_float::FloatRay, golden::slab_float::FloatBox) {
+    let specials = f.specials();
+    let mut x = || {
+        if rng.gen_ratio(1, 4) {
+            specials[rng.gen_range(0..specials.len())]
+        } else {
+            rng.gen::<u32>() & f.mask()
+        }
+    };
+    let mut r = golden::slab_float::FloatRay::default();
+    let mut b = golden::slab_float::FloatBox::default();
+    for a in 0..3 {
+        (r.o_lo[a], r.o_hi[a], r.m_lo[a], r.m_hi[a], b.lo[a], b.hi[a]) =
+            (x(), x(), x(), x(), x(), x());
+        r.neg[a] = x() & 1 == 1;
+    }
+    (r.t_min, r.t_max) = (x(), x());
+    (r, b)
+}
+
+/// `n` float test vectors for format `f`, as [`slab_vectors`] does for the fixed datapath.
+pub fn float_vectors(
+    f: golden::float::FloatFormat,
+    kind: GenKind,
+    seed: u64,
+    n: u64,
+    bubbles: bool,
+) -> impl Iterator<Item = Option<(golden::slab_float::FloatRay, golden::slab_float::FloatBox)>>
+       + Send
+       + 'static {
+    let (lo, hi) = campaign_bounds();
+    let mut gen = SlabGen::new(kind, lo, hi, 1.0 / 64.0, seed);
+    let world = move || {
+        let (r, b) = gen.next().expect("endless");
+        (
+            golden::slab_float::quantize_ray(&f, &r).expect("campaign vectors fit the format"),
+            golden::slab_float::quantize_box(&f, &b).expect("campaign vectors fit the format"),
+        )
+    };
+    test_stream(seed, n, bubbles, world, move |rng| {
+        raw_float_vector(&f, rng)
     })
 }
 

@@ -177,16 +177,16 @@ pub struct XsimStats {
 }
 
 /// Streams `vectors` through the Verilator `harness` and checks every output record: each valid result
-/// against the bit-accurate model (with tag order and latency), and, when `lockstep_rtl`, `valid_out` of
-/// every cycle and every other output port of every valid cycle against the rust-hdl simulation of block
-/// `S` driven with the same inputs.
+/// against the bit-accurate model (with tag order and latency), and, for the first `lockstep_cycles`
+/// cycles, `valid_out` of every cycle and every other output port of every valid cycle against the
+/// rust-hdl simulation of the block made by `make`, driven with the same inputs.
 /// `progress(tests)` is called every 65,536 cycles.
 pub fn xsim<C, S, It>(
     fmt: C,
     make: impl Fn() -> S,
     harness: &Harness,
     vectors: It,
-    lockstep_rtl: bool,
+    lockstep_cycles: u64,
     mut progress: impl FnMut(u64),
 ) -> Result<XsimStats, String>
 where
@@ -220,7 +220,7 @@ where
     let ih = harness.output_index("hit").ok_or("no hit port")?;
     let ien = harness.output_index("t_entry").ok_or("no t_entry port")?;
     let iex = harness.output_index("t_exit").ok_or("no t_exit port")?;
-    let mut rtl = if lockstep_rtl {
+    let mut rtl = if lockstep_cycles > 0 {
         Some(SlabRtl::wrap(make()))
     } else {
         None
@@ -239,6 +239,9 @@ where
         }
         if let Some((r, b)) = v {
             pending.push_back((cycle, tg, r, b));
+        }
+        if cycle >= lockstep_cycles {
+            rtl = None;
         }
         if let Some(sim) = rtl.as_mut() {
             sim.step(v.as_ref().map(|x| (tg, x)));

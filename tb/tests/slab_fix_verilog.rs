@@ -78,7 +78,7 @@ fn cross_simulate<S: SlabFixIo>(fmt: FixFormat, seed: u64) {
     let h = tb::verilator::build(&v, &slab_fix_module(&fmt), &tb::out_dir().join("verilator"))
         .unwrap_or_else(|e| panic!("{e}"));
     let vectors = slab_vectors(fmt, GenKind::Mixed, seed, XSIM_VECTORS, true);
-    let stats = xsim(fmt, || S::for_format(&fmt), &h, vectors, true, |_| {})
+    let stats = xsim(fmt, || S::for_format(&fmt), &h, vectors, u64::MAX, |_| {})
         .unwrap_or_else(|e| panic!("{}: {e}", fmt.name()));
     assert_eq!(stats.tests, XSIM_VECTORS);
     assert!(
@@ -121,7 +121,7 @@ fn a_wrong_verilog_is_caught_and_leaves_a_vcd() {
         || rtl::SlabFixB12::new(&b12),
         &h,
         vectors,
-        true,
+        u64::MAX,
         |_| {},
     )
     .expect_err("b8 Verilog passed as b12");
