@@ -2,21 +2,26 @@
 //! preset width, judged against the exact oracle; a summary table, Verilog, a VCD and a report.
 
 use crate::scene::Scene;
-use golden::check::{judge_fix, Verdict};
+use golden::check::Verdict;
 use golden::exact::{slab_exact, ExactHit, Ext};
 use golden::fixed::{FixFormat, GridMap};
-use golden::slab_fix::SlabFixOut;
+use golden::slab_float::{quantize_box, quantize_ray};
 use golden::slab_ref::slab_ref;
 use std::fmt::Write as _;
 use std::path::Path;
 use std::time::Instant;
-use tb::engine::{run_fix, Engine};
+use tb::engine::{run_fix, run_float, Engine};
+use tb::slab_tb::SlabCtx;
 
 /// One row of the summary.
 pub struct Row {
-    pub fmt: FixFormat,
-    pub cell: f64,
+    /// Format name.
+    pub name: String,
+    /// Grid cell in world units (fixed point), or `-`.
+    pub cell: String,
     pub tests: u64,
+    /// Tests also run through the rust-hdl block (and compared with the model).
+    pub rtl_tests: u64,
     pub exact_hits: u64,
     pub hits: u64,
     pub false_hits: u64,
@@ -61,6 +66,92 @@ fn world(e: &Ext) -> f64 {
     e.to_f64()
 }
 
+/// Tests of each float format also run through its rust-hdl block in the main job (it simulates at about
+/// 10k tests/s; the bit-accurate model runs them all).
+const FLOAT_RTL_TESTS: usize = 4096;
+
+type Sink<'a, O> = &'a mut dyn FnMut(usize, O) -> Result<(), String>;
+
+/// One row: every ray-box test on the model, the first `rtl_n` also on the RTL (through `run_rtl`), all
+/// judged against the exact oracle.
+#[allow(clippy::too_many_arguments)]
+fn measure<C: SlabCtx>(
+    name: String,
+    cell: String,
+    ctx: C,
+    rays: &[C::Ray],
+    boxes: &[C::Box],
+    exact: &[ExactHit],
+    rtl_n: usize,
+    run_rtl: impl FnOnce(
+        std::vec::IntoIter<(usize, C::Ray, C::Box)>,
+        Sink<C::Out>,
+    ) -> Result<(), String>,
+) -> Result<Row, String> {
+    let nb = boxes.len();
+    let n = rays.len() * nb;
+    let model: Vec<C::Out> = (0..n)
+        .map(|i| ctx.model(&rays[i / nb], &boxes[i % nb]))
+        .collect();
+    let tests: Vec<_> = (0..rtl_n)
+        .map(|i| (i, rays[i / nb], boxes[i % nb]))
+        .collect();
+    let mut mismatches = 0u64;
+    let mut rtl_hits = 0u64;
+    let t = Instant::now();
+    run_rtl(tests.into_iter(), &mut |i, o| {
+        mismatches += u64::from(o != model[i]);
+        rtl_hits += 1;
+        Ok(())
+    })?;
+    if rtl_hits != rtl_n as u64 {
+        return Err(format!(
+            "{name}: the RTL returned {rtl_hits} of {rtl_n} results"
+        ));
+    }
+    let mut row = Row {
+        name,
+        cell,
+        tests: n as u64,
+        rtl_tests: rtl_n as u64,
+        exact_hits: exact.iter().filter(|e| e.hit).count() as u64,
+        hits: 0,
+        false_hits: 0,
+        violations: 0,
+        rtl_model_mismatches: mismatches,
+        mean_slack: 0.0,
+        rtl_rate: rtl_n as f64 / t.elapsed().as_secs_f64(),
+    };
+    let (mut slack_sum, mut slack_n) = (0.0, 0u64);
+    for i in 0..n {
+        let (r, o) = (&rays[i / nb], &model[i]);
+        let (hit, en, ex) = ctx.world(r, o);
+        row.hits += hit as u64;
+        match ctx.judge(r, o, &exact[i]) {
+            Verdict::Agree => {}
+            Verdict::FalseHit => row.false_hits += 1,
+            Verdict::Violation(why) => {
+                row.violations += 1;
+                eprintln!(
+                    "VIOLATION {}: ray {} box {}: {why}",
+                    row.name,
+                    i / nb,
+                    i % nb
+                );
+            }
+        }
+        if exact[i].hit && hit {
+            let s = (world(&exact[i].entry) - en) + (ex - world(&exact[i].exit));
+            if s.is_finite() {
+                slack_sum += s;
+                slack_n += 1;
+            }
+        }
+    }
+    row.mean_slack = slack_sum / slack_n.max(1) as f64;
+    Ok(row)
+}
+
 /// Runs the main job on `scene`, writing into `out`. Returns the rows and the report text.
 pub fn run(scene: &Scene, out: &Path) -> Result<(Vec<Row>, String), String> {
     let nb = scene.boxes.len();
@@ -87,6 +178,7 @@ pub fn run(scene: &Scene, out: &Path) -> Result<(Vec<Row>, String), String> {
 
     let (lo, hi) = scene.bounds();
     let mut rows = vec![];
+    let all = |_: &Scene| n;
     for fmt in FixFormat::presets() {
         let map = GridMap::for_bounds(fmt, lo, hi).map_err(|e| e.to_string())?;
         let rays: Vec<_> = scene
@@ -101,74 +193,51 @@ pub fn run(scene: &Scene, out: &Path) -> Result<(Vec<Row>, String), String> {
             .map(|b| map.quantize_box(b))
             .collect::<Result<_, _>>()
             .map_err(|e| e.to_string())?;
-        let tests = || {
-            let (rays, boxes) = (rays.clone(), boxes.clone());
-            (0..n).map(move |i| (i, rays[i / nb], boxes[i % nb]))
-        };
-        let mut model = vec![SlabFixOut::default(); n];
-        run_fix(
-            Engine::Model,
+        let cell = golden::fixed::ldexp(1.0, map.k).to_string();
+        rows.push(measure(
+            fmt.name(),
+            cell,
             fmt,
-            tests(),
-            Path::new(""),
-            None,
-            |i, _, o| {
-                model[i] = o;
-                Ok(())
+            &rays,
+            &boxes,
+            &exact,
+            all(scene),
+            |tests, sink| {
+                run_fix(Engine::Rtl, fmt, tests, Path::new(""), None, |i, _, o| {
+                    sink(i, o)
+                })
+                .map(|_| ())
             },
-        )?;
-        let t = Instant::now();
-        let mut rtl = vec![SlabFixOut::default(); n];
-        run_fix(Engine::Rtl, fmt, tests(), Path::new(""), None, |i, _, o| {
-            rtl[i] = o;
-            Ok(())
-        })?;
-        let rtl_rate = n as f64 / t.elapsed().as_secs_f64();
-        let mut row = Row {
-            fmt,
-            cell: golden::fixed::ldexp(1.0, map.k),
-            tests: n as u64,
-            exact_hits,
-            hits: 0,
-            false_hits: 0,
-            violations: 0,
-            rtl_model_mismatches: (0..n).filter(|&i| rtl[i] != model[i]).count() as u64,
-            mean_slack: 0.0,
-            rtl_rate,
-        };
-        let mut slack_sum = 0.0;
-        let mut slack_n = 0u64;
-        for i in 0..n {
-            let fr = &rays[i / nb];
-            let o = &rtl[i];
-            row.hits += o.hit as u64;
-            match judge_fix(&fmt, fr, o, &exact[i]) {
-                Verdict::Agree => {}
-                Verdict::FalseHit => row.false_hits += 1,
-                Verdict::Violation(why) => {
-                    row.violations += 1;
-                    eprintln!(
-                        "VIOLATION {}: ray {} box {}: {why}",
-                        fmt.name(),
-                        i / nb,
-                        i % nb
-                    );
-                }
-            }
-            if exact[i].hit && o.hit {
-                let (en, ex) = (
-                    fr.t_world_f64(&fmt, o.t_entry),
-                    fr.t_world_f64(&fmt, o.t_exit),
-                );
-                let s = (world(&exact[i].entry) - en) + (ex - world(&exact[i].exit));
-                if s.is_finite() {
-                    slack_sum += s;
-                    slack_n += 1;
-                }
-            }
-        }
-        row.mean_slack = slack_sum / slack_n.max(1) as f64;
-        rows.push(row);
+        )?);
+    }
+    for f in rtl::SLAB_FLOAT_FORMATS {
+        let rays: Vec<_> = scene
+            .rays
+            .iter()
+            .map(|r| quantize_ray(&f, r))
+            .collect::<Result<_, _>>()
+            .map_err(|e| e.to_string())?;
+        let boxes: Vec<_> = scene
+            .boxes
+            .iter()
+            .map(|b| quantize_box(&f, b))
+            .collect::<Result<_, _>>()
+            .map_err(|e| e.to_string())?;
+        rows.push(measure(
+            f.name(),
+            "-".into(),
+            f,
+            &rays,
+            &boxes,
+            &exact,
+            FLOAT_RTL_TESTS.min(n),
+            |tests, sink| {
+                run_float(Engine::Rtl, f, tests, Path::new(""), None, |i, _, o| {
+                    sink(i, o)
+                })
+                .map(|_| ())
+            },
+        )?);
     }
 
     // Verilog and a waveform of the first tests through the b12 tester.
@@ -198,14 +267,17 @@ pub fn run(scene: &Scene, out: &Path) -> Result<(Vec<Row>, String), String> {
     let _ = writeln!(report, "# rtu main job: scene `{}`\n", scene.name);
     let _ = writeln!(
         report,
-        "{} boxes x {} primary rays ({}x{}) = {} ray-box tests per format, each through the rust-hdl\n\
-         `SlabFix` simulation, checked bit for bit against the bit-accurate model and judged against the exact\n\
-         rational oracle. The f64 round-to-nearest reference misses {f64_false_misses} true hits on this scene.\n",
+        "{} boxes x {} primary rays ({}x{}) = {} ray-box tests per format. Fixed-point formats: every test through\n\
+         the rust-hdl `SlabFix` simulation; float formats: every test on the bit-accurate model and the first {}\n\
+         through the rust-hdl `SlabFloat` simulation; RTL results checked bit for bit against the model, and\n\
+         every result judged against the exact rational oracle. The f64 round-to-nearest reference misses\n\
+         {f64_false_misses} true hits on this scene.\n",
         nb,
         scene.rays.len(),
         scene.width,
         scene.height,
-        n
+        n,
+        FLOAT_RTL_TESTS.min(n)
     );
     let _ = writeln!(report, "{}", table(&rows));
     let _ = writeln!(report, "- false-hit rate: false hits per true miss; slack: mean (exact entry - entry) + (exit - exact exit) over true hits, world units;");
@@ -221,14 +293,15 @@ pub fn run(scene: &Scene, out: &Path) -> Result<(Vec<Row>, String), String> {
     );
     std::fs::create_dir_all(out).map_err(|e| format!("{}: {e}", out.display()))?;
     std::fs::write(out.join("report.md"), &report).map_err(|e| e.to_string())?;
-    let mut csv = String::from("format,cell,tests,exact_hits,hits,false_hits,false_hit_rate,violations,rtl_model_mismatches,mean_slack,rtl_tests_per_s\n");
+    let mut csv = String::from("format,cell,tests,rtl_tests,exact_hits,hits,false_hits,false_hit_rate,violations,rtl_model_mismatches,mean_slack,rtl_tests_per_s\n");
     for r in &rows {
         let _ = writeln!(
             csv,
-            "{},{},{},{},{},{},{:.6},{},{},{:.6},{:.0}",
-            r.fmt.name(),
+            "{},{},{},{},{},{},{},{:.6},{},{},{:.6},{:.0}",
+            r.name,
             r.cell,
             r.tests,
+            r.rtl_tests,
             r.exact_hits,
             r.hits,
             r.false_hits,
@@ -246,14 +319,14 @@ pub fn run(scene: &Scene, out: &Path) -> Result<(Vec<Row>, String), String> {
 /// The summary as a Markdown table.
 pub fn table(rows: &[Row]) -> String {
     let mut s = String::from(
-        "| format | grid cell | tests | exact hits | hits | false hits | false-hit rate | false misses / bad intervals | RTL = model | mean slack | RTL tests/s |\n\
+        "| format | grid cell | tests | exact hits | hits | false hits | false-hit rate | false misses / bad intervals | RTL = model (tests) | mean slack | RTL tests/s |\n\
          |---|---|---|---|---|---|---|---|---|---|---|\n",
     );
     for r in rows {
         let _ = writeln!(
             s,
             "| {} | {} | {} | {} | {} | {} | {:.2}% | {} | {} | {:.4} | {:.0} |",
-            r.fmt.name(),
+            r.name,
             r.cell,
             r.tests,
             r.exact_hits,
@@ -262,7 +335,7 @@ pub fn table(rows: &[Row]) -> String {
             100.0 * r.false_hit_rate(),
             r.violations,
             if r.rtl_model_mismatches == 0 {
-                "yes".to_string()
+                format!("yes ({})", r.rtl_tests)
             } else {
                 format!("NO ({})", r.rtl_model_mismatches)
             },

@@ -35,6 +35,13 @@ pub trait SlabCtx: Copy + Send + Sync + Debug + 'static {
     fn out_from_fields(&self, hit: bool, t_entry: u64, t_exit: u64) -> Self::Out;
     /// `(hit, t_entry, t_exit)` with t in world units (exact; the end codes as infinities).
     fn world(&self, r: &Self::Ray, o: &Self::Out) -> (bool, f64, f64);
+    /// The conservativeness verdict of a result against the exact oracle.
+    fn judge(
+        &self,
+        r: &Self::Ray,
+        o: &Self::Out,
+        exact: &golden::exact::ExactHit,
+    ) -> golden::check::Verdict;
 }
 
 impl SlabCtx for FixFormat {
@@ -81,6 +88,14 @@ impl SlabCtx for FixFormat {
             r.t_world_f64(self, o.t_exit),
         )
     }
+    fn judge(
+        &self,
+        r: &FixRay,
+        o: &SlabFixOut,
+        exact: &golden::exact::ExactHit,
+    ) -> golden::check::Verdict {
+        golden::check::judge_fix(self, r, o, exact)
+    }
 }
 
 impl SlabCtx for FloatFormat {
@@ -119,6 +134,14 @@ impl SlabCtx for FloatFormat {
     }
     fn world(&self, _: &FloatRay, o: &SlabFloatOut) -> (bool, f64, f64) {
         (o.hit, self.to_f64(o.t_entry), self.to_f64(o.t_exit))
+    }
+    fn judge(
+        &self,
+        _: &FloatRay,
+        o: &SlabFloatOut,
+        exact: &golden::exact::ExactHit,
+    ) -> golden::check::Verdict {
+        golden::slab_float::judge_float(self, o, exact)
     }
 }
 
