@@ -44,23 +44,34 @@ pub fn slab_float_verilog(f: &golden::float::FloatFormat) -> Result<String, Stri
     })
 }
 
-/// Writes `<dir>/<module>.v` for every preset fixed format and every instantiated float format; returns
-/// the paths written.
+/// Writes `<dir>/<module>.v` for every preset fixed format and every instantiated float format, and
+/// `<dir>/latency.csv` (module, latency in clocks) for the synthesis report; returns the Verilog paths.
 pub fn export_all(dir: &Path) -> std::io::Result<Vec<PathBuf>> {
     std::fs::create_dir_all(dir)?;
     let mut out = vec![];
-    for fmt in FixFormat::presets() {
-        let v = slab_fix_verilog(&fmt).expect("presets are instantiated");
-        let p = dir.join(format!("{}.v", slab_fix_module(&fmt)));
+    let mut latency = String::from("module,latency\n");
+    let mut write = |module: String, v: String, lat: usize| -> std::io::Result<()> {
+        let p = dir.join(format!("{module}.v"));
         std::fs::write(&p, v)?;
+        latency += &format!("{module},{lat}\n");
         out.push(p);
+        Ok(())
+    };
+    for fmt in FixFormat::presets() {
+        write(
+            slab_fix_module(&fmt),
+            slab_fix_verilog(&fmt).expect("presets are instantiated"),
+            crate::SLAB_FIX_LATENCY,
+        )?;
     }
     for f in crate::SLAB_FLOAT_FORMATS {
-        let v = slab_float_verilog(&f).expect("instantiated");
-        let p = dir.join(format!("{}.v", slab_float_module(&f)));
-        std::fs::write(&p, v)?;
-        out.push(p);
+        write(
+            slab_float_module(&f),
+            slab_float_verilog(&f).expect("instantiated"),
+            crate::SLAB_FLOAT_LATENCY,
+        )?;
     }
+    std::fs::write(dir.join("latency.csv"), latency)?;
     Ok(out)
 }
 
