@@ -4,6 +4,7 @@
 
 mod bench;
 mod campaign_cmd;
+mod float_check;
 mod main_job;
 mod run_vectors;
 mod scene;
@@ -75,6 +76,8 @@ enum Cmd {
     },
     /// Conservativeness against the exact oracle and cross-simulation in Verilator, at scale.
     Campaign(campaign_cmd::Args),
+    /// The float model against half, native f32 and exact rounding, at campaign scale.
+    FloatCheck(float_check::Args),
     /// Throughput of the model, the rust-hdl simulation and Verilator, measured in one run.
     Bench(bench::Args),
 }
@@ -141,6 +144,7 @@ fn main() -> ExitCode {
             output,
         } => run_vectors::gen(kind, n, seed, output.as_deref()),
         Cmd::Campaign(a) => campaign_cmd::run(&a, &cli.out),
+        Cmd::FloatCheck(a) => float_check::run(&a, &cli.out),
         Cmd::Bench(a) => bench::run(&a, &cli.out),
     };
     match r {
