@@ -4,7 +4,7 @@
 //! `[t_entry, t_exit]` must enclose the true interval. A reported hit that is truly a miss is a false hit:
 //! allowed, counted as extra work.
 
-use crate::exact::{slab_exact, ExactHit};
+use crate::exact::{slab_exact, ExactHit, Ext};
 use crate::fixed::{FixBox, FixFormat, FixRay, GridMap};
 use crate::geom::{Aabb, Ray};
 use crate::slab_fix::{slab_fix, SlabFixOut};
@@ -20,31 +20,40 @@ pub enum Verdict {
     Violation(String),
 }
 
-/// Compares a fixed-point result with the exact oracle.
-pub fn judge_fix(fmt: &FixFormat, fr: &FixRay, out: &SlabFixOut, exact: &ExactHit) -> Verdict {
-    match (exact.hit, out.hit) {
+/// Judges a result against the exact oracle, for any datapath: `hit`, and `interval` — the reported
+/// `[t_entry, t_exit]` as exact world values, computed only for a reported hit, `None` when it has no value
+/// (a NaN).
+pub fn judge(
+    exact: &ExactHit,
+    hit: bool,
+    interval: impl FnOnce() -> Option<(Ext, Ext)>,
+) -> Verdict {
+    match (exact.hit, hit) {
         (false, false) => Verdict::Agree,
         (false, true) => Verdict::FalseHit,
         (true, false) => Verdict::Violation("false miss".into()),
-        (true, true) => {
-            let (en, ex) = (fr.t_world(fmt, out.t_entry), fr.t_world(fmt, out.t_exit));
-            if en > exact.entry {
-                Verdict::Violation(format!(
-                    "t_entry {} is after the exact entry {}",
-                    en.to_f64(),
-                    exact.entry.to_f64()
-                ))
-            } else if ex < exact.exit {
-                Verdict::Violation(format!(
-                    "t_exit {} is before the exact exit {}",
-                    ex.to_f64(),
-                    exact.exit.to_f64()
-                ))
-            } else {
-                Verdict::Agree
-            }
-        }
+        (true, true) => match interval() {
+            None => Verdict::Violation("NaN in a hit's interval".into()),
+            Some((en, _)) if en > exact.entry => Verdict::Violation(format!(
+                "t_entry {} is after the exact entry {}",
+                en.to_f64(),
+                exact.entry.to_f64()
+            )),
+            Some((_, ex)) if ex < exact.exit => Verdict::Violation(format!(
+                "t_exit {} is before the exact exit {}",
+                ex.to_f64(),
+                exact.exit.to_f64()
+            )),
+            Some(_) => Verdict::Agree,
+        },
     }
+}
+
+/// Compares a fixed-point result with the exact oracle.
+pub fn judge_fix(fmt: &FixFormat, fr: &FixRay, out: &SlabFixOut, exact: &ExactHit) -> Verdict {
+    judge(exact, out.hit, || {
+        Some((fr.t_world(fmt, out.t_entry), fr.t_world(fmt, out.t_exit)))
+    })
 }
 
 /// Quantises one world vector, runs the bit-accurate model and the exact oracle, and judges.

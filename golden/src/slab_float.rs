@@ -257,35 +257,15 @@ pub fn t_ext(f: &FloatFormat, x: u32) -> Ext {
     Ext::from_f64(f.to_f64(x))
 }
 
-/// Judges a float result against the exact oracle (see [`crate::check::Verdict`]).
+/// Judges a float result against the exact oracle (see [`crate::check::judge`]).
 pub fn judge_float(f: &FloatFormat, out: &SlabFloatOut, exact: &ExactHit) -> crate::check::Verdict {
-    use crate::check::Verdict;
-    match (exact.hit, out.hit) {
-        (false, false) => Verdict::Agree,
-        (false, true) => Verdict::FalseHit,
-        (true, false) => Verdict::Violation("false miss".into()),
-        (true, true) => {
-            if f.is_nan(out.t_entry) || f.is_nan(out.t_exit) {
-                return Verdict::Violation("NaN in a hit's interval".into());
-            }
-            let (en, ex) = (t_ext(f, out.t_entry), t_ext(f, out.t_exit));
-            if en > exact.entry {
-                Verdict::Violation(format!(
-                    "t_entry {} is after the exact entry {}",
-                    en.to_f64(),
-                    exact.entry.to_f64()
-                ))
-            } else if ex < exact.exit {
-                Verdict::Violation(format!(
-                    "t_exit {} is before the exact exit {}",
-                    ex.to_f64(),
-                    exact.exit.to_f64()
-                ))
-            } else {
-                Verdict::Agree
-            }
+    crate::check::judge(exact, out.hit, || {
+        if f.is_nan(out.t_entry) || f.is_nan(out.t_exit) {
+            None
+        } else {
+            Some((t_ext(f, out.t_entry), t_ext(f, out.t_exit)))
         }
-    }
+    })
 }
 
 #[cfg(test)]

@@ -6,6 +6,7 @@
 //! | [`dut`] | the [`dut::PipelinedDut`] trait and a stream runner that checks results, tag order and latency |
 //! | [`rtl_sim`] | drives a rust-hdl block cycle by cycle (the fast direct loop), with optional VCD |
 //! | [`vcd_read`] | reads a VCD back and measures when `valid` leaves a block |
+//! | [`verilog_tools`] | Verilator lint and Icarus on exported Verilog |
 //! | [`verilator`] | builds a C++ harness around exported Verilog and streams vectors through it |
 //! | [`campaign`] | large streamed conservativeness and cross-simulation campaigns with progress |
 //! | [`strategies`] | proptest strategies over quantised slab vectors |
@@ -19,6 +20,7 @@ pub mod slab_tb;
 pub mod strategies;
 pub mod vcd_read;
 pub mod verilator;
+pub mod verilog_tools;
 
 /// The project's output folder for generated artefacts (Verilog, VCD, reports, harness builds):
 /// `$RTU_OUT`, or `out/` at the workspace root.

@@ -5,38 +5,11 @@ use golden::float::{FloatFormat, Rounding};
 use rand::{Rng, SeedableRng};
 use rand_pcg::Pcg64;
 use rtl::export::{fp_add_verilog, fp_mul_verilog, fp_unit_module};
-use std::process::Command;
 
 fn lint_and_icarus(v: &str, module: &str) {
-    let dir = tb::out_dir().join("verilog");
-    std::fs::create_dir_all(&dir).unwrap();
-    let path = dir.join(format!("{module}.v"));
-    std::fs::write(&path, v).unwrap();
-    let waiver = concat!(
-        env!("CARGO_MANIFEST_DIR"),
-        "/../rtl/lint/verilator_waiver.vlt"
-    );
-    let out = Command::new("verilator")
-        .args(["--lint-only", "-Wall", waiver])
-        .arg(&path)
-        .output()
-        .expect("verilator (scripts/test installs it)");
-    let text = String::from_utf8_lossy(&out.stderr);
-    assert!(
-        out.status.success() && !text.contains("%Warning"),
-        "{module}:\n{text}"
-    );
-    let out = Command::new("iverilog")
-        .arg("-o")
-        .arg(path.with_extension("vvp"))
-        .arg(&path)
-        .output()
-        .expect("iverilog");
-    assert!(
-        out.status.success(),
-        "iverilog rejects {module}: {}",
-        String::from_utf8_lossy(&out.stderr)
-    );
+    let path = tb::verilog_tools::write(v, module);
+    tb::verilog_tools::lint(&path).unwrap_or_else(|e| panic!("{e}"));
+    tb::verilog_tools::icarus(&path).unwrap_or_else(|e| panic!("{e}"));
 }
 
 fn cross<const E: usize, const M: usize, const N: usize>(n: usize) {

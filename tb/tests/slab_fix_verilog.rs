@@ -8,53 +8,24 @@ use golden::gen::GenKind;
 use rtl::export::{slab_fix_module, slab_fix_verilog};
 use rtl::slab_fix::SlabFixIo;
 use std::path::PathBuf;
-use std::process::Command;
 use tb::campaign::slab_vectors;
 use tb::slab_tb::xsim;
 
 fn export(fmt: &FixFormat) -> (String, PathBuf) {
-    let dir = tb::out_dir().join("verilog");
-    std::fs::create_dir_all(&dir).unwrap();
     let v = slab_fix_verilog(fmt).unwrap();
-    let path = dir.join(format!("{}.v", slab_fix_module(fmt)));
-    std::fs::write(&path, &v).unwrap();
+    let path = tb::verilog_tools::write(&v, &slab_fix_module(fmt));
     (v, path)
-}
-
-fn run(tool: &str, args: &[&str]) -> (bool, String) {
-    let out = Command::new(tool)
-        .args(args)
-        .output()
-        .unwrap_or_else(|e| panic!("cannot run {tool} ({e}); scripts/test installs it"));
-    let text = format!(
-        "{}{}",
-        String::from_utf8_lossy(&out.stdout),
-        String::from_utf8_lossy(&out.stderr)
-    );
-    (out.status.success(), text)
 }
 
 #[test]
 fn exported_verilog_is_lint_clean() {
-    let waiver = concat!(
-        env!("CARGO_MANIFEST_DIR"),
-        "/../rtl/lint/verilator_waiver.vlt"
-    );
     for fmt in FixFormat::presets() {
         let (v, path) = export(&fmt);
         assert!(
             v.contains(&format!("module {}(", slab_fix_module(&fmt))),
             "module name carries the format"
         );
-        let (ok, text) = run(
-            "verilator",
-            &["--lint-only", "-Wall", waiver, path.to_str().unwrap()],
-        );
-        assert!(
-            ok && !text.contains("%Warning") && !text.contains("%Error"),
-            "{}:\n{text}",
-            path.display()
-        );
+        tb::verilog_tools::lint(&path).unwrap_or_else(|e| panic!("{e}"));
     }
 }
 
@@ -62,12 +33,7 @@ fn exported_verilog_is_lint_clean() {
 fn icarus_accepts_exported_verilog() {
     for fmt in FixFormat::presets() {
         let (_, path) = export(&fmt);
-        let obj = path.with_extension("vvp");
-        let (ok, text) = run(
-            "iverilog",
-            &["-o", obj.to_str().unwrap(), path.to_str().unwrap()],
-        );
-        assert!(ok, "iverilog rejects {}:\n{text}", path.display());
+        tb::verilog_tools::icarus(&path).unwrap_or_else(|e| panic!("{e}"));
     }
 }
 

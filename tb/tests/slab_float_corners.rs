@@ -47,87 +47,24 @@ fn case(
     }
 }
 
+#[rustfmt::skip]
 fn catalogue() -> Vec<Case> {
     let (u0, u1) = ([0.0; 3], [1.0; 3]);
     vec![
         // (0 - 0) * inf = NaN; the swap puts +inf into the entry.
-        case(
-            "nan_origin_on_lower_slab_plane_zero_dir",
-            [-4.0, 0.0, 0.5],
-            [1.0, 0.0, 0.0],
-            u0,
-            u1,
-            true,
-            &FORMATS,
-        ),
+        case("nan_origin_on_lower_slab_plane_zero_dir", [-4.0, 0.0, 0.5], [1.0, 0.0, 0.0], u0, u1, true, &FORMATS),
         // (1 - 1) * inf = NaN; the swap puts -inf into the exit.
-        case(
-            "nan_origin_on_upper_slab_plane_zero_dir",
-            [-4.0, 1.0, 0.5],
-            [1.0, 0.0, 0.0],
-            u0,
-            u1,
-            true,
-            &FORMATS,
-        ),
+        case("nan_origin_on_upper_slab_plane_zero_dir", [-4.0, 1.0, 0.5], [1.0, 0.0, 0.0], u0, u1, true, &FORMATS),
         // With -0 the NaNs land where the comparisons ignore them: right by luck.
-        case(
-            "signed_zero_dir_on_upper_plane",
-            [-4.0, 1.0, 0.5],
-            [1.0, -0.0, 0.0],
-            u0,
-            u1,
-            true,
-            &[],
-        ),
-        case(
-            "signed_zero_dir_on_lower_plane",
-            [-4.0, 0.0, 0.5],
-            [1.0, -0.0, 0.0],
-            u0,
-            u1,
-            true,
-            &[],
-        ),
+        case("signed_zero_dir_on_upper_plane", [-4.0, 1.0, 0.5], [1.0, -0.0, 0.0], u0, u1, true, &[]),
+        case("signed_zero_dir_on_lower_plane", [-4.0, 0.0, 0.5], [1.0, -0.0, 0.0], u0, u1, true, &[]),
         // Aimed at the corner (1, 1, 1): round-to-nearest puts the entry past the exit.
-        case(
-            "grazing_corner_fp16",
-            [-3.5, 1.9, -0.9],
-            [4.5, -0.9, 1.9],
-            u0,
-            u1,
-            true,
-            &[FloatFormat::FP16],
-        ),
-        case(
-            "grazing_corner_fp32",
-            [-3.0, -2.0, 1.2],
-            [4.0, 3.0, -0.2],
-            u0,
-            u1,
-            true,
-            &[FloatFormat::FP32],
-        ),
+        case("grazing_corner_fp16", [-3.5, 1.9, -0.9], [4.5, -0.9, 1.9], u0, u1, true, &[FloatFormat::FP16]),
+        case("grazing_corner_fp32", [-3.0, -2.0, 1.2], [4.0, 3.0, -0.2], u0, u1, true, &[FloatFormat::FP32]),
         // The swap turns an inverted (empty) box into a valid one.
-        case(
-            "inverted_box",
-            [-4.0, 0.5, 0.5],
-            [1.0, 0.0, 0.0],
-            u1,
-            u0,
-            false,
-            &FORMATS,
-        ),
+        case("inverted_box", [-4.0, 0.5, 0.5], [1.0, 0.0, 0.0], u1, u0, false, &FORMATS),
         // 1/d overflows the small formats; both methods must still find the box straight ahead.
-        case(
-            "tiny_direction_component",
-            [-4.0, 0.5, 0.5],
-            [1.0, 1e-9, 0.0],
-            u0,
-            u1,
-            true,
-            &[],
-        ),
+        case("tiny_direction_component", [-4.0, 0.5, 0.5], [1.0, 1e-9, 0.0], u0, u1, true, &[]),
     ]
 }
 

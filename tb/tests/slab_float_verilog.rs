@@ -7,7 +7,6 @@ use golden::gen::GenKind;
 use golden::slab_float::{quantize_box, quantize_ray};
 use rtl::export::{slab_float_module, slab_float_verilog};
 use rtl::slab_float::SlabFloatIo;
-use std::process::Command;
 use tb::slab_tb::xsim;
 
 const VECTORS: u64 = 100_000;
@@ -16,35 +15,9 @@ fn check<S: SlabFloatIo>(seed: u64) {
     let f = S::format();
     let module = slab_float_module(&f);
     let v = slab_float_verilog(&f).unwrap();
-    let dir = tb::out_dir().join("verilog");
-    std::fs::create_dir_all(&dir).unwrap();
-    let path = dir.join(format!("{module}.v"));
-    std::fs::write(&path, &v).unwrap();
-    let waiver = concat!(
-        env!("CARGO_MANIFEST_DIR"),
-        "/../rtl/lint/verilator_waiver.vlt"
-    );
-    let out = Command::new("verilator")
-        .args(["--lint-only", "-Wall", waiver])
-        .arg(&path)
-        .output()
-        .expect("verilator (scripts/test installs it)");
-    let text = String::from_utf8_lossy(&out.stderr);
-    assert!(
-        out.status.success() && !text.contains("%Warning"),
-        "{module}:\n{text}"
-    );
-    let out = Command::new("iverilog")
-        .arg("-o")
-        .arg(path.with_extension("vvp"))
-        .arg(&path)
-        .output()
-        .expect("iverilog");
-    assert!(
-        out.status.success(),
-        "iverilog rejects {module}: {}",
-        String::from_utf8_lossy(&out.stderr)
-    );
+    let path = tb::verilog_tools::write(&v, &module);
+    tb::verilog_tools::lint(&path).unwrap_or_else(|e| panic!("{e}"));
+    tb::verilog_tools::icarus(&path).unwrap_or_else(|e| panic!("{e}"));
 
     let h = tb::verilator::build(&v, &module, &tb::out_dir().join("verilator"))
         .unwrap_or_else(|e| panic!("{e}"));

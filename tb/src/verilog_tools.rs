@@ -1,0 +1,70 @@
+//! The real tools' verdict on exported Verilog: Verilator's lint and Icarus' compiler.
+
+use std::path::{Path, PathBuf};
+use std::process::Command;
+
+/// The project's one-line-per-waiver Verilator configuration.
+pub fn waiver_file() -> PathBuf {
+    Path::new(env!("CARGO_MANIFEST_DIR"))
+        .join("..")
+        .join("rtl")
+        .join("lint")
+        .join("verilator_waiver.vlt")
+}
+
+/// Writes `verilog` to `out/verilog/<module>.v` and returns the path.
+pub fn write(verilog: &str, module: &str) -> PathBuf {
+    let dir = crate::out_dir().join("verilog");
+    std::fs::create_dir_all(&dir).expect("create out/verilog");
+    let path = dir.join(format!("{module}.v"));
+    std::fs::write(&path, verilog).expect("write Verilog");
+    path
+}
+
+fn run(tool: &str, args: &[&std::ffi::OsStr]) -> (bool, String) {
+    let out = Command::new(tool)
+        .args(args)
+        .output()
+        .unwrap_or_else(|e| panic!("cannot run {tool} ({e}); scripts/test installs it"));
+    (
+        out.status.success(),
+        format!(
+            "{}{}",
+            String::from_utf8_lossy(&out.stdout),
+            String::from_utf8_lossy(&out.stderr)
+        ),
+    )
+}
+
+/// `verilator --lint-only -Wall` with the waivers: `Err` with the tool's output unless clean.
+pub fn lint(path: &Path) -> Result<(), String> {
+    let w = waiver_file();
+    let (ok, text) = run(
+        "verilator",
+        &[
+            "--lint-only".as_ref(),
+            "-Wall".as_ref(),
+            w.as_os_str(),
+            path.as_os_str(),
+        ],
+    );
+    if ok && !text.contains("%Warning") && !text.contains("%Error") {
+        Ok(())
+    } else {
+        Err(format!("{}:\n{text}", path.display()))
+    }
+}
+
+/// Icarus compiles the file: `Err` with its output otherwise.
+pub fn icarus(path: &Path) -> Result<(), String> {
+    let obj = path.with_extension("vvp");
+    let (ok, text) = run(
+        "iverilog",
+        &["-o".as_ref(), obj.as_os_str(), path.as_os_str()],
+    );
+    if ok {
+        Ok(())
+    } else {
+        Err(format!("iverilog rejects {}:\n{text}", path.display()))
+    }
+}
