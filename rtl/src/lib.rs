@@ -11,6 +11,7 @@ pub mod delay;
 pub mod export;
 pub mod fp_add;
 pub mod fp_cmp;
+pub mod fp_min_max;
 pub mod fp_mul;
 pub mod fp_round;
 pub mod mul_round;
