@@ -198,12 +198,11 @@ impl<const E: usize, const M: usize, const N: usize> Logic for FpMul<E, M, N> {
         }
         self.sign_q1.d.next = ((self.a.val() ^ self.b.val()) & self.sign_n.val()).any();
         self.special.next = true;
+        // NaN: a NaN operand, or inf x 0.
         if ((self.a.val() & self.mag_mask.val()) > self.inf_n.val())
             | ((self.b.val() & self.mag_mask.val()) > self.inf_n.val())
-        {
-            self.special_val.next = self.nan_n.val();
-        } else if (((self.a.val() & self.mag_mask.val()) == self.inf_n.val())
-            & !(self.b.val() & self.mag_mask.val()).any())
+            | (((self.a.val() & self.mag_mask.val()) == self.inf_n.val())
+                & !(self.b.val() & self.mag_mask.val()).any())
             | (((self.b.val() & self.mag_mask.val()) == self.inf_n.val())
                 & !(self.a.val() & self.mag_mask.val()).any())
         {

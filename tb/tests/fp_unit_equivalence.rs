@@ -37,7 +37,12 @@ fn check<const E: usize, const M: usize, const N: usize>(n: usize) {
         let got = run_checked(&mut dut, pairs(&f, n, k as u64), |&(a, b)| {
             f.add(a, b, mode)
         });
-        got.unwrap_or_else(|e| panic!("{} {mode:?}: {e}", f.name()));
+        got.unwrap_or_else(|e| panic!("{} add {mode:?}: {e}", f.name()));
+        let mut dut = FpMulRtl::<E, M, N>::new(mode);
+        let got = run_checked(&mut dut, pairs(&f, n, 10 + k as u64), |&(a, b)| {
+            f.mul(a, b, mode)
+        });
+        got.unwrap_or_else(|e| panic!("{} mul {mode:?}: {e}", f.name()));
     }
 }
 
@@ -65,21 +70,32 @@ fn e4m3_exhaustive() {
             .flat_map(|a| (0..=f.mask()).map(move |b| Some((a, b))))
             .collect();
         let mut dut = FpAddRtl::<4, 3, 8>::new(mode);
-        run_checked(&mut dut, all, |&(a, b)| f.add(a, b, mode))
-            .unwrap_or_else(|e| panic!("e4m3 {mode:?}: {e}"));
+        run_checked(&mut dut, all.clone(), |&(a, b)| f.add(a, b, mode))
+            .unwrap_or_else(|e| panic!("e4m3 add {mode:?}: {e}"));
+        let mut dut = FpMulRtl::<4, 3, 8>::new(mode);
+        run_checked(&mut dut, all, |&(a, b)| f.mul(a, b, mode))
+            .unwrap_or_else(|e| panic!("e4m3 mul {mode:?}: {e}"));
     }
 }
 
-/// The check can fail: the adder rounding toward -inf disagrees with the round-to-nearest model.
+/// The check can fail: a unit rounding toward -inf disagrees with the round-to-nearest model.
 #[test]
 fn a_wrong_mode_is_caught() {
     let f = FloatFormat::FP16;
-    let mut dut = FpAddRtl::<5, 10, 16>::new(Rounding::Down);
-    let r = run_checked(&mut dut, pairs(&f, 2_000, 9), |&(a, b)| {
+    let mut add = FpAddRtl::<5, 10, 16>::new(Rounding::Down);
+    let r = run_checked(&mut add, pairs(&f, 2_000, 9), |&(a, b)| {
         f.add(a, b, Rounding::NearestEven)
     });
     assert!(
         r.is_err(),
         "round-down adder matched the round-to-nearest model"
+    );
+    let mut mul = FpMulRtl::<5, 10, 16>::new(Rounding::Up);
+    let r = run_checked(&mut mul, pairs(&f, 2_000, 9), |&(a, b)| {
+        f.mul(a, b, Rounding::NearestEven)
+    });
+    assert!(
+        r.is_err(),
+        "round-up multiplier matched the round-to-nearest model"
     );
 }

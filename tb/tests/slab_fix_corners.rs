@@ -21,6 +21,7 @@ struct Case {
     textbook_wrong: bool,
 }
 
+#[allow(clippy::too_many_arguments)]
 fn case(
     name: &'static str,
     o: [f64; 3],

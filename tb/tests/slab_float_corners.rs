@@ -3,7 +3,6 @@
 //! gets it wrong; the conservative float datapath must be right — no false miss, enclosing interval — in
 //! every format. The grazing cases were found by searching rays aimed at corners of the unit box.
 
-use glam::DVec3;
 use golden::check::Verdict;
 use golden::exact::slab_exact;
 use golden::float::FloatFormat;
