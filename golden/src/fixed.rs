@@ -463,7 +463,7 @@ pub fn floor_pow2(x: f64, e: i32) -> Option<i64> {
         return Some(0);
     }
     // Below 1 in magnitude the floor is 0 or -1 whatever the rounding of the scaling.
-    if x.abs() < 1.0 && e <= 0 || x.abs() < ldexp(1.0, -e) {
+    if x.abs() < ldexp(1.0, -e) {
         return Some(if x > 0.0 { 0 } else { -1 });
     }
     let y = ldexp(x, e); // |y| >= 1: a normal number, so the scaling was exact
@@ -476,11 +476,6 @@ pub fn floor_pow2(x: f64, e: i32) -> Option<i64> {
 /// `ceil(x * 2^e)` exactly, or `None` when it does not fit.
 pub fn ceil_pow2(x: f64, e: i32) -> Option<i64> {
     floor_pow2(-x, e).map(|v| -v)
-}
-
-/// The grid of a format over the scene bounds, and a box and ray quantised on it, in one call.
-pub fn quantize(map: &GridMap, ray: &Ray, b: &Aabb) -> Result<(FixRay, FixBox), Error> {
-    Ok((map.quantize_ray(ray)?, map.quantize_box(b)?))
 }
 
 #[cfg(test)]
