@@ -20,6 +20,7 @@ pub mod float;
 pub mod floatcheck;
 pub mod gen;
 pub mod geom;
+pub mod plane;
 pub mod slab_fix;
 pub mod slab_float;
 pub mod slab_ref;

@@ -1,0 +1,227 @@
+//! Cull planes: empty-space planes inside a BVH node's box, the f64 reference of the cull-plane tester and
+//! its exact oracle.
+//!
+//! Arm's application US 2025/0259373 (paragraphs 0217-0238, FIG. 12-13) gives a node, beside its AABB, a
+//! few planes that bound the empty regions of the box. Each plane is a normal `n` pointing at the empty
+//! side and an offset `w` from the box centroid `c`: all of the node's geometry satisfies
+//! `n . (p - c) <= w` (the closed non-empty side). A ray `o + t d` that survives the slab test is clipped by
+//! every plane:
+//!
+//! ```text
+//! s0 = n . (o - c) - w        den = n . d        (the ray's point at t is on the empty side iff s0 + t den > 0)
+//! den > 0: t_exit  = min(t_exit,  -s0 / den)
+//! den < 0: t_entry = max(t_entry, -s0 / den)
+//! den = 0: the whole ray is on one side: culled when s0 > 0
+//! ```
+//!
+//! and the node is culled when the clipped interval is empty. This is the patent's front-side and
+//! back-side culling in one rule: a plane facing the ray (`den < 0`) pushes the entry forward, one facing
+//! away (`den > 0`) pulls the exit back.
+//!
+//! Contract (ARCHITECTURE.md): a node is culled only if no point of the ray within its t range lies inside
+//! the box on the non-empty side of every plane; the reported interval encloses the exact clipped one.
+//! The datapaths store their planes in their own formats ([`crate::plane_fix`], [`crate::plane_float`]);
+//! each stored plane is an exact real half-space ([`ExactPlane`]), which the oracle clips with.
+
+use crate::error::Error;
+use crate::exact::{rat, slab_exact, ExactHit, Ext};
+use crate::geom::{Aabb, Ray};
+use glam::DVec3;
+use num_rational::BigRational;
+use num_traits::{Signed, Zero};
+
+/// A plane in world space: geometry of the node satisfies `n . (p - c) <= w`, `c` the box centroid.
+/// A zero normal is an unused plane slot (it culls nothing).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Plane {
+    pub n: DVec3,
+    pub w: f64,
+}
+
+/// A node as the cull-plane tester sees it: its box and its planes (offsets from the box's centroid).
+#[derive(Clone, Debug, PartialEq)]
+pub struct PlaneNode {
+    pub bounds: Aabb,
+    pub planes: Vec<Plane>,
+}
+
+impl Plane {
+    /// Checks that the plane is finite; the error names the field.
+    pub fn validate(&self, what: &str) -> Result<(), Error> {
+        for a in 0..3 {
+            if !self.n[a].is_finite() {
+                return Err(Error::bad_value(
+                    format!("{what} normal.{}", ["x", "y", "z"][a]),
+                    self.n[a],
+                    "plane normals must be finite",
+                ));
+            }
+        }
+        if !self.w.is_finite() {
+            return Err(Error::bad_value(
+                format!("{what} offset w"),
+                self.w,
+                "plane offsets must be finite",
+            ));
+        }
+        Ok(())
+    }
+}
+
+/// Output of the f64 reference: `culled`, and the clipped interval when not culled.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct ClipRef {
+    pub culled: bool,
+    pub t_entry: f64,
+    pub t_exit: f64,
+}
+
+/// The f64 reference: the slab test of [`crate::slab_ref`], then every plane as in the module doc.
+/// Round-to-nearest everywhere, so it is the meaning of the test, not a conservative datapath.
+pub fn clip_ref(ray: &Ray, node: &PlaneNode) -> ClipRef {
+    let s = crate::slab_ref::slab_ref(ray, &node.bounds);
+    let c = (node.bounds.min + node.bounds.max) * 0.5;
+    let (mut entry, mut exit) = (s.t_entry, s.t_exit);
+    let mut culled = !s.hit;
+    for p in &node.planes {
+        let s0 = p.n.dot(ray.origin - c) - p.w;
+        let den = p.n.dot(ray.dir);
+        if den > 0.0 {
+            exit = exit.min(-s0 / den);
+        } else if den < 0.0 {
+            entry = entry.max(-s0 / den);
+        } else if s0 > 0.0 {
+            culled = true;
+        }
+    }
+    ClipRef {
+        culled: culled || entry > exit,
+        t_entry: entry,
+        t_exit: exit,
+    }
+}
+
+/// A half-space `n . p <= h` in world coordinates, exactly (a stored plane of some datapath, converted).
+#[derive(Clone, Debug, PartialEq)]
+pub struct ExactPlane {
+    pub n: [BigRational; 3],
+    pub h: BigRational,
+}
+
+impl ExactPlane {
+    /// The world plane `n . (p - c) <= w` with `c` the centroid of `b`, exactly.
+    pub fn from_world(p: &Plane, b: &Aabb) -> ExactPlane {
+        let two = rat(2.0);
+        let n = [rat(p.n.x), rat(p.n.y), rat(p.n.z)];
+        let mut h = rat(p.w);
+        for (a, na) in n.iter().enumerate() {
+            h += na * (rat(b.min[a]) + rat(b.max[a])) / &two;
+        }
+        ExactPlane { n, h }
+    }
+
+    /// `n . p - h` at a world point, exactly (positive on the empty side).
+    pub fn side(&self, p: DVec3) -> BigRational {
+        let mut s = -self.h.clone();
+        for a in 0..3 {
+            s += &self.n[a] * rat(p[a]);
+        }
+        s
+    }
+}
+
+/// The exact clip: the slab test on the world box, then every half-space, in rational arithmetic.
+/// `hit` is false exactly when the node must be culled; `entry`/`exit` are the true clipped interval.
+pub fn clip_exact(ray: &Ray, b: &Aabb, planes: &[ExactPlane]) -> ExactHit {
+    let mut h = slab_exact(ray, b);
+    if !h.hit {
+        return h;
+    }
+    let o = [rat(ray.origin.x), rat(ray.origin.y), rat(ray.origin.z)];
+    let d = [rat(ray.dir.x), rat(ray.dir.y), rat(ray.dir.z)];
+    for p in planes {
+        let mut s0 = -p.h.clone();
+        let mut den = BigRational::zero();
+        for a in 0..3 {
+            s0 += &p.n[a] * &o[a];
+            den += &p.n[a] * &d[a];
+        }
+        if den.is_zero() {
+            if s0.is_positive() {
+                h.hit = false;
+            }
+            continue;
+        }
+        let t = Ext::Fin(-s0 / &den);
+        if den.is_positive() {
+            h.exit = h.exit.min(t);
+        } else {
+            h.entry = h.entry.max(t);
+        }
+    }
+    h.hit &= h.entry <= h.exit;
+    h
+}
+
+/// The exact clip with the planes of a world node (for the reference's own checks).
+pub fn clip_exact_world(ray: &Ray, node: &PlaneNode) -> ExactHit {
+    let planes: Vec<ExactPlane> = node
+        .planes
+        .iter()
+        .map(|p| ExactPlane::from_world(p, &node.bounds))
+        .collect();
+    clip_exact(ray, &node.bounds, &planes)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn node(planes: Vec<Plane>) -> PlaneNode {
+        PlaneNode {
+            bounds: Aabb::new(DVec3::ZERO, DVec3::splat(2.0)).unwrap(),
+            planes,
+        }
+    }
+
+    #[test]
+    fn a_diagonal_plane_cuts_the_empty_corner_off() {
+        // Geometry lies on x + y <= 2 (the lower-left half of the box seen along z).
+        let n = node(vec![Plane {
+            n: DVec3::new(1.0, 1.0, 0.0),
+            w: 0.0,
+        }]);
+        // Along -x at y = 1.75, through the empty upper corner.
+        let r = Ray::new(
+            DVec3::new(3.0, 1.75, 1.0),
+            DVec3::new(-1.0, 0.0, 0.0),
+            0.0,
+            f64::INFINITY,
+        )
+        .unwrap();
+        // Enters the box at x = 2 (t = 1) and the non-empty side at x = 0.25 (t = 2.75), leaves at t = 3.
+        let c = clip_ref(&r, &n);
+        assert!(!c.culled);
+        assert_eq!((c.t_entry, c.t_exit), (2.75, 3.0));
+        // With t_max = 2.5 the surviving part is gone: culled, and the oracle agrees.
+        let short = Ray { t_max: 2.5, ..r };
+        assert!(clip_ref(&short, &n).culled);
+        assert!(!clip_exact_world(&short, &n).hit);
+        let e = clip_exact_world(&r, &n);
+        assert!(e.hit && e.entry == Ext::Fin(rat(2.75)) && e.exit == Ext::Fin(rat(3.0)));
+    }
+
+    #[test]
+    fn a_ray_parallel_to_a_plane_is_culled_only_on_the_empty_side() {
+        let n = node(vec![Plane {
+            n: DVec3::new(0.0, 1.0, 0.0),
+            w: 0.5,
+        }]);
+        let along = |y: f64| Ray::new(DVec3::new(-1.0, y, 1.0), DVec3::X, 0.0, 10.0).unwrap();
+        assert!(clip_ref(&along(1.9), &n).culled);
+        assert!(!clip_exact_world(&along(1.9), &n).hit);
+        // On the plane itself (closed non-empty side): kept.
+        assert!(!clip_ref(&along(1.5), &n).culled);
+        assert!(clip_exact_world(&along(1.5), &n).hit);
+    }
+}
