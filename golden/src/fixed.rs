@@ -366,9 +366,7 @@ impl GridMap {
             out.o_lo[a] = self.coord("ray origin", a, r.origin[a], false)?;
             out.o_hi[a] = self.coord("ray origin", a, r.origin[a], true)?;
         }
-        let dmax = r.dir.abs().max_element();
-        // Scale 2^j brings the largest component into [1, 2).
-        let j = if dmax == 0.0 { 0 } else { -exponent(dmax) };
+        let j = dir_scale_exp(r.dir);
         for a in 0..3 {
             let d = r.dir[a];
             out.neg[a] = d.is_sign_negative();
@@ -397,6 +395,18 @@ impl GridMap {
         };
         out.t_exp = self.k + j - fmt.ft as i32;
         Ok(out)
+    }
+}
+
+/// The exponent `j` of the exact scaling `2^j` that brings a direction's largest component into `[1, 2)`
+/// (0 for the zero direction). Every datapath input derived from the direction uses the same `j`, so their
+/// t codes share one unit.
+pub fn dir_scale_exp(dir: DVec3) -> i32 {
+    let dmax = dir.abs().max_element();
+    if dmax == 0.0 {
+        0
+    } else {
+        -exponent(dmax)
     }
 }
 

@@ -119,7 +119,8 @@ impl FloatFormat {
     pub fn emin(&self) -> i32 {
         1 - self.bias()
     }
-    fn exp_all_ones(&self) -> u32 {
+    /// The all-ones biased exponent (infinities and NaNs).
+    pub fn exp_all_ones(&self) -> u32 {
         (1 << self.e) - 1
     }
     /// Mask of all the format's bits.
@@ -134,10 +135,12 @@ impl FloatFormat {
     pub fn sign_bit(&self) -> u32 {
         1 << (self.e + self.m)
     }
-    fn pack(&self, sign: bool, bexp: u32, frac: u32) -> u32 {
+    /// Packs sign, biased exponent and fraction field.
+    pub fn pack(&self, sign: bool, bexp: u32, frac: u32) -> u32 {
         (u32::from(sign) << (self.e + self.m)) | (bexp << self.m) | frac
     }
-    fn fields(&self, x: u32) -> (bool, u32, u32) {
+    /// Sign, biased exponent and fraction field.
+    pub fn fields(&self, x: u32) -> (bool, u32, u32) {
         (
             x & self.sign_bit() != 0,
             (x >> self.m) & self.exp_all_ones(),
