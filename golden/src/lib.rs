@@ -21,6 +21,8 @@ pub mod floatcheck;
 pub mod gen;
 pub mod geom;
 pub mod plane;
+pub mod plane_fix;
+pub mod plane_float;
 pub mod slab_fix;
 pub mod slab_float;
 pub mod slab_ref;
