@@ -13,6 +13,7 @@
 //! [`vectors`].
 
 pub mod check;
+pub mod cull_gen;
 pub mod error;
 pub mod exact;
 pub mod fixed;
@@ -30,3 +31,8 @@ pub mod vectors;
 
 pub use error::Error;
 pub use geom::{Aabb, Ray};
+pub mod bvh;
+pub mod planegen;
+pub mod scene;
+pub mod traverse;
+pub mod tri;

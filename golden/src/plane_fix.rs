@@ -14,7 +14,7 @@
 //! # The ray's direction
 //! The plane test needs `d`, not `1/d`: [`quantize_dir`] stores `d * 2^j` (the slab format's scaling,
 //! [`crate::fixed::dir_scale_exp`], so t codes share one unit) with `FD` fraction bits as an interval
-//! `[floor, ceil]`, `D = FD + 2` bits signed.
+//! `[floor, ceil]`, `D = FD + 3` bits signed (the leading component's ceiling can reach `2^(FD+1)`).
 //!
 //! # The test (per plane, every value an exact integer)
 //! ```text
@@ -64,7 +64,7 @@ pub struct CullFixFormat {
     pub base: FixFormat,
     /// Normal component bits `N` (signed).
     pub n: u32,
-    /// Direction fraction bits `FD`; the direction is `D = FD + 2` bits signed.
+    /// Direction fraction bits `FD`; the direction is `D = FD + 3` bits signed.
     pub fd: u32,
     /// Reciprocal table index bits `R` (`2^R` entries).
     pub r: u32,
@@ -136,9 +136,9 @@ impl CullFixFormat {
     pub fn s_bits(&self) -> u32 {
         self.base.g + self.n + 5
     }
-    /// Direction bits `D = FD + 2` (signed).
+    /// Direction bits `D = FD + 3` (signed): the leading component's ceiling can reach `2^(FD+1)`.
     pub fn d_bits(&self) -> u32 {
-        self.fd + 2
+        self.fd + 3
     }
     /// Bits of `den` (signed); a magnitude takes one bit less.
     pub fn den_bits(&self) -> u32 {
@@ -193,7 +193,7 @@ pub fn quantize_dir(cf: &CullFixFormat, ray: &Ray) -> Result<FixDir, Error> {
     let e = dir_scale_exp(ray.dir) + cf.fd as i32;
     let mut out = FixDir::default();
     for a in 0..3 {
-        // |d * 2^j| < 2, so both fit D bits.
+        // |d * 2^j| < 2, so both are at most 2^(FD+1) in magnitude and fit D bits.
         out.lo[a] = floor_pow2(ray.dir[a], e).expect("scaled direction below 2");
         out.hi[a] = ceil_pow2(ray.dir[a], e).expect("scaled direction below 2");
     }
@@ -294,11 +294,11 @@ pub fn recip_entry(r: u32, i: u64) -> (u64, u64) {
     (num / (base + i + 1), num.div_ceil(base + i))
 }
 
-/// The reciprocal bound of a magnitude `mag > 0`: `(r, L)` with `mag = m 2^L`, `m` in `[1, 2)`, and `r` the
+/// The reciprocal bound of a magnitude `mag`: `(r, L)` with `mag = m 2^L`, `m` in `[1, 2)`, and `r` the
 /// table's upper (`upper = true`) or lower bound of `2^(R+1) / m`.
 pub fn recip(r: u32, mag: u64, upper: bool) -> (u64, u32) {
-    debug_assert!(mag > 0);
-    let l = 63 - mag.leading_zeros();
+    // A zero magnitude (only from inputs no quantisation produces) reads entry 0 with L = 0, as the RTL.
+    let l = 63u32.saturating_sub(mag.leading_zeros());
     let mask = (1u64 << r) - 1;
     let idx = if l >= r {
         (mag >> (l - r)) & mask
@@ -342,12 +342,13 @@ pub fn plane_sums(r: &FixRay, d: &FixDir, b: &FixBox, p: &FixPlane) -> (i64, i64
     (s, dl, dh)
 }
 
-/// The scaled, rounded, saturated bound `A * r * 2^(C - L)`: floor for an entry, ceil for an exit.
+/// The scaled, rounded, saturated bound `A * r * 2^(c_shift - L)` in `t_bits`-bit t codes: floor for an
+/// entry, ceil for an exit (the slab's saturation: an entry into `[-inf, largest finite]`, an exit into
+/// `[smallest finite, +inf]`).
 #[inline(always)]
-pub fn scale_bound(cf: &CullFixFormat, a: i64, r: u64, l: u32, exit: bool) -> i64 {
-    let fmt = &cf.base;
+pub fn scale_bound(c_shift: i32, t_bits: u32, a: i64, r: u64, l: u32, exit: bool) -> i64 {
     let q = a as i128 * r as i128;
-    let sh = cf.c_shift() - l as i32;
+    let sh = c_shift - l as i32;
     let v = if sh >= 0 {
         q << sh
     } else if exit {
@@ -355,12 +356,47 @@ pub fn scale_bound(cf: &CullFixFormat, a: i64, r: u64, l: u32, exit: bool) -> i6
     } else {
         q >> (-sh)
     };
-    let (ninf, pinf) = (fmt.t_neg_inf() as i128, fmt.t_pos_inf() as i128);
+    let ninf = -(1i128 << (t_bits - 1));
+    let pinf = (1i128 << (t_bits - 1)) - 1;
     (if exit {
         v.clamp(ninf + 1, pinf)
     } else {
         v.clamp(ninf, pinf - 1)
     }) as i64
+}
+
+/// What a plane with sums `(S_lo, den_lo, den_hi)` does (module doc), for table bits `r_bits`, scale
+/// exponent `c_shift`, `t_bits`-bit t codes and `den_bits`-bit `den` values. This is the RTL's `PlaneBound`
+/// unit. The magnitude is taken as a `den_bits`-bit unsigned number: only an inverted `den` interval (which
+/// quantisation never produces) can make the chosen one negative, and the RTL wraps it the same way.
+#[inline]
+pub fn bound_from_sums(
+    r_bits: u32,
+    c_shift: i32,
+    t_bits: u32,
+    den_bits: u32,
+    s: i64,
+    dl: i64,
+    dh: i64,
+) -> PlaneEffect {
+    let (exit, a, mag) = if dl > 0 {
+        (true, -s, if s <= 0 { dl } else { dh })
+    } else if dh < 0 {
+        (false, s, if s >= 0 { -dl } else { -dh })
+    } else if dl == 0 && dh == 0 && s > 0 {
+        return PlaneEffect::Cull;
+    } else {
+        return PlaneEffect::None;
+    };
+    // The larger bound takes the upper reciprocal: exit with A >= 0, entry with A < 0.
+    let upper = (a >= 0) == exit;
+    let (rv, l) = recip(r_bits, mag as u64 & ((1u64 << den_bits) - 1), upper);
+    let t = scale_bound(c_shift, t_bits, a, rv, l, exit);
+    if exit {
+        PlaneEffect::Exit(t)
+    } else {
+        PlaneEffect::Entry(t)
+    }
 }
 
 /// What one plane does, bit for bit as the RTL computes it.
@@ -373,24 +409,7 @@ pub fn plane_effect(
     p: &FixPlane,
 ) -> PlaneEffect {
     let (s, dl, dh) = plane_sums(r, d, b, p);
-    let (exit, a, mag) = if dl > 0 {
-        (true, -s, if s <= 0 { dl } else { dh })
-    } else if dh < 0 {
-        (false, s, if s >= 0 { -dl } else { -dh })
-    } else if dl == 0 && dh == 0 && s > 0 {
-        return PlaneEffect::Cull;
-    } else {
-        return PlaneEffect::None;
-    };
-    // The larger bound takes the upper reciprocal: exit with A >= 0, entry with A < 0.
-    let upper = (a >= 0) == exit;
-    let (rv, l) = recip(cf.r, mag as u64, upper);
-    let t = scale_bound(cf, a, rv, l, exit);
-    if exit {
-        PlaneEffect::Exit(t)
-    } else {
-        PlaneEffect::Entry(t)
-    }
+    bound_from_sums(cf.r, cf.c_shift(), cf.base.t, cf.den_bits(), s, dl, dh)
 }
 
 /// The fixed-point cull-plane test, chained after the slab test's result `slab` on the same ray and box.

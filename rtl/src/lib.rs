@@ -15,6 +15,9 @@ pub mod fp_min_max;
 pub mod fp_mul;
 pub mod fp_round;
 pub mod mul_round;
+pub mod plane_bound;
+pub mod plane_fix;
+pub mod plane_sums;
 pub mod sig_mul;
 pub mod slab_fix;
 pub mod slab_float;
@@ -32,6 +35,14 @@ pub type SlabFixB8 = SlabFix<8, 9, 12, 14>;
 pub type SlabFixB12 = SlabFix<12, 13, 16, 20>;
 /// The slab tester for `golden::fixed::FixFormat::b16()`.
 pub type SlabFixB16 = SlabFix<16, 17, 20, 24>;
+
+/// The chained slab + cull-plane tester over b12 with the default plane format (`N = 8`, `FD = 11`,
+/// `R = 8`) and `K` planes.
+pub type PlaneFixB12<const K: usize> = plane_fix::PlaneFix<12, 13, 16, 20, 8, 14, 24, 25, 23, K>;
+/// The same over b8 (`FD = 8`).
+pub type PlaneFixB8<const K: usize> = plane_fix::PlaneFix<8, 9, 12, 14, 8, 11, 20, 21, 20, K>;
+/// The same over b16 (`FD = 14`).
+pub type PlaneFixB16<const K: usize> = plane_fix::PlaneFix<16, 17, 20, 24, 8, 17, 28, 29, 26, K>;
 
 /// The float slab tester in binary32.
 pub type SlabFloatE8M23 = SlabFloat<8, 23, 32>;

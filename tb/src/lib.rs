@@ -15,6 +15,7 @@
 pub mod campaign;
 pub mod dut;
 pub mod engine;
+pub mod plane_tb;
 pub mod rtl_sim;
 pub mod slab_tb;
 pub mod strategies;

@@ -272,12 +272,14 @@ where
             for (k, p) in harness.outputs.iter().enumerate() {
                 let w = sim.uut.output_word(&p.name).ok_or_else(|| format!("no output {}", p.name))?;
                 if (k == iv || out[iv] != 0) && w != out[k] {
+                    let due = pending.front().filter(|p| p.0 + lat == cycle + 1);
                     return Err(format!(
-                        "cycle {}: output {} is {:#x} in Verilator and {:#x} in the rust-hdl simulation (input {v:?})",
+                        "cycle {}: output {} is {:#x} in Verilator and {:#x} in the rust-hdl simulation\n  result due for: {:?}",
                         cycle + 1,
                         p.name,
                         out[k],
-                        w
+                        w,
+                        due.map(|p| (p.2, p.3))
                     ));
                 }
             }
