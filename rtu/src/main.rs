@@ -4,6 +4,7 @@
 
 mod bench;
 mod campaign_cmd;
+mod cull_cmd;
 mod float_check;
 mod main_job;
 mod run_vectors;
@@ -80,6 +81,56 @@ enum Cmd {
     FloatCheck(float_check::Args),
     /// Throughput of the model, the rust-hdl simulation and Verilator, measured in one run.
     Bench(bench::Args),
+    /// Cull planes: the models against the exact clip and an exact ray-triangle test, at scale.
+    CullCampaign {
+        /// Cases per datapath, format and K (half uniform, half adversarial).
+        #[arg(long, default_value_t = 1_000_000)]
+        vectors: u64,
+        /// Planes per node, comma separated.
+        #[arg(long, default_value = "4")]
+        k: String,
+        /// Fixed formats (b8, b12, b16), comma separated; empty for none.
+        #[arg(long, default_value = "b8,b12,b16")]
+        fixed: String,
+        /// Float formats (fp32, bf16, fp16, eXmY), comma separated; empty for none.
+        #[arg(long, default_value = "fp32,bf16,fp16")]
+        float: String,
+        #[arg(long, default_value_t = 1)]
+        seed: u64,
+    },
+    /// Cull planes on scenes: triangle tests saved against AABB-only traversal, closest hits compared.
+    CullScenes {
+        /// Scenes, comma separated.
+        #[arg(long, default_value = "grass,room,mesh")]
+        scenes: String,
+        #[arg(long, default_value = "1,2,4,8")]
+        k: String,
+        #[arg(long, default_value = "b12,b16")]
+        fixed: String,
+        #[arg(long, default_value = "bf16,fp16,fp32")]
+        float: String,
+        #[arg(long, default_value_t = 64)]
+        width: usize,
+        #[arg(long, default_value_t = 48)]
+        height: usize,
+    },
+}
+
+fn list<T>(s: &str, parse: impl Fn(&str) -> Result<T, String>) -> Result<Vec<T>, String> {
+    s.split(',')
+        .map(str::trim)
+        .filter(|x| !x.is_empty())
+        .map(parse)
+        .collect()
+}
+
+fn parse_k(s: &str) -> Result<usize, String> {
+    match s.parse::<usize>() {
+        Ok(k) if (1..=golden::plane_fix::MAX_PLANES).contains(&k) => Ok(k),
+        _ => Err(format!(
+            "K = `{s}`: planes per node must be a number in 1..=8"
+        )),
+    }
 }
 
 fn main() -> ExitCode {
@@ -146,6 +197,45 @@ fn main() -> ExitCode {
         Cmd::Campaign(a) => campaign_cmd::run(&a, &cli.out),
         Cmd::FloatCheck(a) => float_check::run(&a, &cli.out),
         Cmd::Bench(a) => bench::run(&a, &cli.out),
+        Cmd::CullCampaign {
+            vectors,
+            k,
+            fixed,
+            float,
+            seed,
+        } => (|| {
+            let ks = list(&k, parse_k)?;
+            let fx = list(&fixed, |s| {
+                golden::fixed::FixFormat::parse(s).map_err(|e| e.to_string())
+            })?;
+            let fl = list(&float, |s| {
+                golden::float::FloatFormat::parse(s).map_err(|e| e.to_string())
+            })?;
+            let t = cull_cmd::campaign(vectors, &ks, &fx, &fl, seed)?;
+            print!("{t}");
+            std::fs::create_dir_all(&cli.out).map_err(|e| e.to_string())?;
+            std::fs::write(cli.out.join("cull_campaign.md"), t).map_err(|e| e.to_string())
+        })(),
+        Cmd::CullScenes {
+            scenes,
+            k,
+            fixed,
+            float,
+            width,
+            height,
+        } => (|| {
+            let ks = list(&k, parse_k)?;
+            let fx = list(&fixed, |s| {
+                golden::fixed::FixFormat::parse(s).map_err(|e| e.to_string())
+            })?;
+            let fl = list(&float, |s| {
+                golden::float::FloatFormat::parse(s).map_err(|e| e.to_string())
+            })?;
+            let names = list(&scenes, |s| Ok(s.to_string()))?;
+            let t = cull_cmd::scenes(&names, &ks, &fx, &fl, width, height, &cli.out)?;
+            print!("{t}");
+            std::fs::write(cli.out.join("cull_scenes.md"), t).map_err(|e| e.to_string())
+        })(),
     };
     match r {
         Ok(()) => ExitCode::SUCCESS,

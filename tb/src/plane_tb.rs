@@ -285,3 +285,90 @@ pub fn cull_fix_campaign(
     }
     Ok(st)
 }
+
+/// A case quantised for the float tester of format `cf` with `k` planes (as [`fix_case`]).
+pub fn float_case(
+    cf: &golden::plane_float::CullFloatFormat,
+    c: &CullCase,
+) -> Result<
+    (
+        golden::plane_float::NodeFloatRay,
+        golden::plane_float::FloatNode,
+        Vec<ExactPlane>,
+    ),
+    Error,
+> {
+    use golden::plane_float as pf;
+    let f = &cf.f;
+    let r = pf::NodeFloatRay {
+        ray: golden::slab_float::quantize_ray(f, &c.ray)?,
+        dir: pf::quantize_dir(cf, &c.ray)?,
+    };
+    let mut node = pf::FloatNode {
+        b: golden::slab_float::quantize_box(f, &c.bounds)?,
+        ..Default::default()
+    };
+    for (k, n) in c.normals.iter().enumerate() {
+        node.planes[k] = pf::fit_plane(cf, &node.b, *n, &c.tri)?;
+    }
+    if let Some((k, top)) = c.extreme_w {
+        node.planes[k].w = if top {
+            f.max_finite(false)
+        } else {
+            f.max_finite(true)
+        };
+        if node.planes[k].n == [0; 3] {
+            node.planes[k].n[0] = f.from_f64(1.0, golden::float::Rounding::NearestEven);
+        }
+    }
+    let exact = node.planes[..c.normals.len()]
+        .iter()
+        .map(|p| p.to_exact(f, &node.b))
+        .collect();
+    Ok((r, node, exact))
+}
+
+/// The float counterpart of [`cull_fix_campaign`] (no fraction variant: `culled_fractions` stays 0).
+pub fn cull_float_campaign(
+    cf: golden::plane_float::CullFloatFormat,
+    k: usize,
+    seed: u64,
+    n: u64,
+    adversarial: f64,
+    mut progress: impl FnMut(u64),
+) -> Result<CullStats, String> {
+    let mut gen = CullGen::new(seed, adversarial, k, CULL_R);
+    let mut st = CullStats::default();
+    let f = cf.f;
+    while st.vectors < n {
+        let c = gen.case();
+        let Ok((r, node, exact_planes)) = float_case(&cf, &c) else {
+            continue;
+        };
+        let ex = clip_exact(&c.ray, &c.bounds, &exact_planes);
+        let out = golden::plane_float::node_float(&cf, k, &r, &node);
+        let (v, th) = judge_case(&c, &ex, out.hit, || {
+            golden::plane_float::out_interval(&f, &out)
+        });
+        st.vectors += 1;
+        st.exact_culled += u64::from(!ex.hit);
+        st.culled += u64::from(!out.hit);
+        st.tri_hits += u64::from(th);
+        if let Verdict::Violation(why) = v {
+            st.violations += 1;
+            return Err(format!(
+                "{} k{k}: case {} ({:?}): {why}\n  ray {:?}\n  box {:?}\n  tri {:?}\n  node {node:?}\n  out {out:?}",
+                cf.name(),
+                st.vectors,
+                c.kind,
+                c.ray,
+                c.bounds,
+                c.tri
+            ));
+        }
+        if st.vectors % 65536 == 0 {
+            progress(st.vectors);
+        }
+    }
+    Ok(st)
+}

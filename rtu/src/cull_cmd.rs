@@ -1,0 +1,245 @@
+//! `rtu cull-campaign` and `rtu cull-scenes`: the cull-plane tester's conservativeness campaign against
+//! the exact clip and the exact triangle test, and the triangle tests it saves on scenes.
+
+use golden::bvh::Bvh;
+use golden::fixed::{FixFormat, GridMap};
+use golden::geom::Ray;
+use golden::plane_fix::{self, CullFixFormat, FixNode, NodeFixRay};
+use golden::plane_float::{self, CullFloatFormat, FloatNode, NodeFloatRay};
+use golden::traverse::{trace, AabbOnly, NodeTester};
+use indicatif::{ProgressBar, ProgressStyle};
+use std::fmt::Write as _;
+use std::path::Path;
+use tb::plane_tb::{cull_fix_campaign, cull_float_campaign, CullFixCtx, CullStats};
+
+fn bar(n: u64, msg: String) -> ProgressBar {
+    let pb = ProgressBar::new(n);
+    pb.set_style(
+        ProgressStyle::with_template("{msg:28} {bar:30} {pos}/{len} {per_sec} eta {eta}")
+            .expect("template"),
+    );
+    pb.set_message(msg);
+    pb
+}
+
+/// Runs `n` cases (half uniform, half adversarial, on two threads) per configuration and prints a table;
+/// returns an error at the first violation.
+pub fn campaign(
+    n: u64,
+    ks: &[usize],
+    fixed: &[FixFormat],
+    floats: &[golden::float::FloatFormat],
+    seed: u64,
+) -> Result<String, String> {
+    let mut table = String::from("| datapath | format | K | vectors | exact culls | culled | culled by exact fractions | triangle hits | violations |\n|---|---|---|---|---|---|---|---|---|\n");
+    for &k in ks {
+        for fmt in fixed {
+            let ctx = CullFixCtx {
+                cf: CullFixFormat::over(*fmt),
+                k,
+            };
+            let pb = bar(n, format!("fixed {} k{k}", fmt.name()));
+            let st = two_halves(n, seed + k as u64, |s, m, adv| {
+                cull_fix_campaign(ctx, s, m, adv, |_| pb.inc(65536))
+            })?;
+            pb.finish_and_clear();
+            row(&mut table, "fixed", &ctx.cf.name(), k, &st);
+        }
+        for f in floats {
+            let cf = CullFloatFormat::over(*f);
+            let pb = bar(n, format!("float {} k{k}", f.name()));
+            let st = two_halves(n, seed + 100 + k as u64, |s, m, adv| {
+                cull_float_campaign(cf, k, s, m, adv, |_| pb.inc(65536))
+            })?;
+            pb.finish_and_clear();
+            row(&mut table, "float", &cf.name(), k, &st);
+        }
+    }
+    Ok(table)
+}
+
+/// Half the cases uniform and half adversarial, one half per thread.
+fn two_halves(
+    n: u64,
+    seed: u64,
+    run: impl Fn(u64, u64, f64) -> Result<CullStats, String> + Sync,
+) -> Result<CullStats, String> {
+    let (a, b) = std::thread::scope(|s| {
+        let h = s.spawn(|| run(seed, n / 2, 0.0));
+        let b = run(seed ^ 0xadd, n - n / 2, 1.0);
+        (h.join().expect("campaign thread"), b)
+    });
+    let mut st = a?;
+    st.add(&b?);
+    Ok(st)
+}
+
+fn row(t: &mut String, dp: &str, name: &str, k: usize, st: &CullStats) {
+    let _ = writeln!(
+        t,
+        "| {dp} | {name} | {k} | {} | {} | {} | {} | {} | {} |",
+        st.vectors,
+        st.exact_culled,
+        st.culled,
+        if dp == "fixed" {
+            st.culled_fractions.to_string()
+        } else {
+            "-".into()
+        },
+        st.tri_hits,
+        st.violations
+    );
+}
+
+/// The fixed-point chained tester as a traversal's node test: every node's box and planes stored in the
+/// format (planes fitted to the node's subtree), every ray quantised on the way in.
+struct FixTester {
+    cf: CullFixFormat,
+    k: usize,
+    map: GridMap,
+    nodes: Vec<FixNode>,
+}
+
+impl NodeTester for FixTester {
+    fn test(&mut self, ray: &Ray, node: usize) -> Option<(f64, f64)> {
+        let r = NodeFixRay {
+            ray: self.map.quantize_ray(ray).expect("rays inside the grid"),
+            dir: plane_fix::quantize_dir(&self.cf, ray).expect("valid ray"),
+        };
+        let out = plane_fix::node_fix(&self.cf, self.k, &r, &self.nodes[node]);
+        out.hit.then(|| {
+            (
+                r.ray.t_world_f64(&self.cf.base, out.t_entry),
+                r.ray.t_world_f64(&self.cf.base, out.t_exit),
+            )
+        })
+    }
+}
+
+struct FloatTester {
+    cf: CullFloatFormat,
+    k: usize,
+    nodes: Vec<FloatNode>,
+}
+
+impl NodeTester for FloatTester {
+    fn test(&mut self, ray: &Ray, node: usize) -> Option<(f64, f64)> {
+        let f = &self.cf.f;
+        let r = NodeFloatRay {
+            ray: golden::slab_float::quantize_ray(f, ray).expect("rays in range"),
+            dir: plane_float::quantize_dir(&self.cf, ray).expect("valid ray"),
+        };
+        let out = plane_float::node_float(&self.cf, self.k, &r, &self.nodes[node]);
+        out.hit
+            .then(|| (f.to_f64(out.t_entry), f.to_f64(out.t_exit)))
+    }
+}
+
+fn subtree_vertices(bvh: &Bvh, tris: &[golden::tri::Triangle], node: usize) -> Vec<glam::DVec3> {
+    bvh.subtree_tris(node)
+        .iter()
+        .flat_map(|&t| tris[t].v)
+        .collect()
+}
+
+/// Triangle tests with `K` planes per node against AABB-only traversal, per scene, format and K, on
+/// primary rays (`w x h`) and one bounce ray per primary hit; every closest hit compared with the
+/// AABB-only (exact) traversal's. Writes `<out>/cull_scenes.csv` and returns a markdown table.
+pub fn scenes(
+    names: &[String],
+    ks: &[usize],
+    fixed: &[FixFormat],
+    floats: &[golden::float::FloatFormat],
+    w: usize,
+    h: usize,
+    out: &Path,
+) -> Result<String, String> {
+    let mut csv = String::from("scene,rays,datapath,format,k,tri_tests,aabb_tri_tests,ratio,node_tests,aabb_node_tests,closest_hit_mismatches\n");
+    let mut table = String::from("| scene | rays | datapath | format | K | triangle tests | AABB-only | saved | closest hits differing |\n|---|---|---|---|---|---|---|---|---|\n");
+    for name in names {
+        let sc = golden::scene::by_name(name, 1, None).map_err(|e| e.to_string())?;
+        let bvh = Bvh::build(&sc.tris, 4).map_err(|e| e.to_string())?;
+        let prim = golden::scene::primary_rays(&sc, w, h);
+        let (hits0, _) = trace(&bvh, &sc.tris, &prim, &mut AabbOnly::new(&bvh));
+        let sec = golden::scene::secondary_rays(&sc, &prim, &hits0, 2);
+        let b = sc.bounds();
+        let ext = (b.max - b.min) * 0.5 + glam::DVec3::splat(1e-3);
+        let (lo, hi) = (
+            (b.min - ext).min(sc.camera.eye),
+            (b.max + ext).max(sc.camera.eye),
+        );
+        let world_planes: Vec<_> = ks
+            .iter()
+            .map(|&k| golden::planegen::generate(&bvh, &sc.tris, k))
+            .collect::<Result<_, _>>()
+            .map_err(|e| e.to_string())?;
+        for (set, rays) in [("primary", &prim), ("bounce", &sec.bounce)] {
+            let (base_hits, base) = trace(&bvh, &sc.tris, rays, &mut AabbOnly::new(&bvh));
+            let mut emit = |dp: &str,
+                            fname: String,
+                            k: usize,
+                            hits: Vec<Option<golden::traverse::Hit>>,
+                            st: golden::traverse::TraversalStats| {
+                let diff = hits.iter().zip(&base_hits).filter(|(a, b)| a != b).count();
+                let ratio = st.tri_tests as f64 / base.tri_tests.max(1) as f64;
+                let _ = writeln!(
+                    csv,
+                    "{name},{set},{dp},{fname},{k},{},{},{ratio:.4},{},{},{diff}",
+                    st.tri_tests, base.tri_tests, st.node_tests, base.node_tests
+                );
+                let _ = writeln!(
+                    table,
+                    "| {name} | {set} | {dp} | {fname} | {k} | {} | {} | {:.1}% | {diff} |",
+                    st.tri_tests,
+                    base.tri_tests,
+                    100.0 * (1.0 - ratio)
+                );
+            };
+            for (ki, &k) in ks.iter().enumerate() {
+                let planes = &world_planes[ki];
+                for fmt in fixed {
+                    let cf = CullFixFormat::over(*fmt);
+                    let map = GridMap::for_bounds(*fmt, lo, hi).map_err(|e| e.to_string())?;
+                    let mut nodes = Vec::with_capacity(bvh.nodes.len());
+                    for (i, nd) in bvh.nodes.iter().enumerate() {
+                        let mut n = FixNode {
+                            b: map.quantize_box(&nd.bounds).map_err(|e| e.to_string())?,
+                            ..Default::default()
+                        };
+                        let verts = subtree_vertices(&bvh, &sc.tris, i);
+                        for (j, p) in planes[i].iter().take(k).enumerate() {
+                            n.planes[j] = plane_fix::fit_plane(&cf, &map, &n.b, p.n, &verts)
+                                .map_err(|e| e.to_string())?;
+                        }
+                        nodes.push(n);
+                    }
+                    let (hits, st) =
+                        trace(&bvh, &sc.tris, rays, &mut FixTester { cf, k, map, nodes });
+                    emit("fixed", fmt.name(), k, hits, st);
+                }
+                for f in floats {
+                    let cf = CullFloatFormat::over(*f);
+                    let mut nodes = Vec::with_capacity(bvh.nodes.len());
+                    for (i, nd) in bvh.nodes.iter().enumerate() {
+                        let mut n = FloatNode {
+                            b: golden::slab_float::quantize_box(f, &nd.bounds)
+                                .map_err(|e| e.to_string())?,
+                            ..Default::default()
+                        };
+                        let verts = subtree_vertices(&bvh, &sc.tris, i);
+                        for (j, p) in planes[i].iter().take(k).enumerate() {
+                            n.planes[j] = plane_float::fit_plane(&cf, &n.b, p.n, &verts)
+                                .map_err(|e| e.to_string())?;
+                        }
+                        nodes.push(n);
+                    }
+                    let (hits, st) = trace(&bvh, &sc.tris, rays, &mut FloatTester { cf, k, nodes });
+                    emit("float", f.name(), k, hits, st);
+                }
+            }
+        }
+    }
+    std::fs::create_dir_all(out).map_err(|e| e.to_string())?;
+    std::fs::write(out.join("cull_scenes.csv"), csv).map_err(|e| e.to_string())?;
+    Ok(table)
+}
