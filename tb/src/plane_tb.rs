@@ -228,26 +228,70 @@ pub fn judge_case(
     (v, tri_hit_now)
 }
 
-/// Runs `n` cases through the fixed model of `ctx` against the exact clip and the exact triangle test.
-/// The first violation is returned as an error naming the case.
+/// One case run through a datapath: the exact clip by its stored planes, its cull decision, its interval
+/// (exact world values, `None` for a NaN), and the exact-fraction variant's decision where there is one.
+pub struct CaseRun {
+    pub exact: ExactHit,
+    pub hit: bool,
+    pub interval: Option<(golden::exact::Ext, golden::exact::Ext)>,
+    pub fraction_hit: Option<bool>,
+    pub detail: String,
+}
+
+/// The campaign loop shared by both datapaths: `n` cases from [`CullGen`], each quantised and run by
+/// `run` (`None`: the case does not fit the format, skipped), judged by [`judge_case`]. The first violation
+/// is returned as an error naming the case.
+fn campaign_loop(
+    name: &str,
+    k: usize,
+    seed: u64,
+    n: u64,
+    adversarial: f64,
+    mut run: impl FnMut(&CullCase) -> Option<CaseRun>,
+    mut progress: impl FnMut(u64),
+) -> Result<CullStats, String> {
+    let mut gen = CullGen::new(seed, adversarial, k, CULL_R);
+    let mut st = CullStats::default();
+    while st.vectors < n {
+        let c = gen.case();
+        let Some(r) = run(&c) else {
+            continue;
+        };
+        let (v, th) = judge_case(&c, &r.exact, r.hit, || r.interval.clone());
+        st.vectors += 1;
+        st.exact_culled += u64::from(!r.exact.hit);
+        st.culled += u64::from(!r.hit);
+        st.culled_fractions += u64::from(r.fraction_hit == Some(false));
+        st.tri_hits += u64::from(th);
+        if let Verdict::Violation(why) = v {
+            st.violations += 1;
+            return Err(format!(
+                "{name} k{k}: case {} ({:?}): {why}\n  ray {:?}\n  box {:?}\n  tri {:?}\n  {}",
+                st.vectors, c.kind, c.ray, c.bounds, c.tri, r.detail
+            ));
+        }
+        if st.vectors % 65536 == 0 {
+            progress(st.vectors);
+        }
+    }
+    Ok(st)
+}
+
+/// Runs `n` cases through the fixed model of `ctx` against the exact clip and the exact triangle test,
+/// counting also what the exact-fraction variant ([`cull_fix_fractions`]) would cull.
 pub fn cull_fix_campaign(
     ctx: CullFixCtx,
     seed: u64,
     n: u64,
     adversarial: f64,
-    mut progress: impl FnMut(u64),
+    progress: impl FnMut(u64),
 ) -> Result<CullStats, String> {
     let map = cull_map(ctx.cf.base);
-    let mut gen = CullGen::new(seed, adversarial, ctx.k, CULL_R);
-    let mut st = CullStats::default();
-    while st.vectors < n {
-        let c = gen.case();
-        let Ok((r, node, exact_planes)) = fix_case(&ctx.cf, &map, &c) else {
-            continue;
-        };
-        let ex = clip_exact(&c.ray, &c.bounds, &exact_planes);
+    let f = ctx.cf.base;
+    let run = |c: &CullCase| {
+        let (r, node, exact_planes) = fix_case(&ctx.cf, &map, c).ok()?;
         let out = ctx.model(&r, &node);
-        let slab = golden::slab_fix::slab_fix(&ctx.cf.base, &r.ray, &node.b);
+        let slab = golden::slab_fix::slab_fix(&f, &r.ray, &node.b);
         let (frac_hit, _, _) = cull_fix_fractions(
             &ctx.cf,
             &r.ray,
@@ -256,34 +300,18 @@ pub fn cull_fix_campaign(
             &node.planes[..ctx.k],
             &slab,
         );
-        let (v, th) = judge_case(&c, &ex, out.hit, || {
-            Some((
-                r.ray.t_world(&ctx.cf.base, out.t_entry),
-                r.ray.t_world(&ctx.cf.base, out.t_exit),
-            ))
-        });
-        st.vectors += 1;
-        st.exact_culled += u64::from(!ex.hit);
-        st.culled += u64::from(!out.hit);
-        st.culled_fractions += u64::from(!frac_hit);
-        st.tri_hits += u64::from(th);
-        if let Verdict::Violation(why) = v {
-            st.violations += 1;
-            return Err(format!(
-                "{}: case {} ({:?}): {why}\n  ray {:?}\n  box {:?}\n  tri {:?}\n  node {node:?}\n  out {out:?}",
-                ctx.name(),
-                st.vectors,
-                c.kind,
-                c.ray,
-                c.bounds,
-                c.tri
-            ));
-        }
-        if st.vectors % 65536 == 0 {
-            progress(st.vectors);
-        }
-    }
-    Ok(st)
+        Some(CaseRun {
+            exact: clip_exact(&c.ray, &c.bounds, &exact_planes),
+            hit: out.hit,
+            interval: Some((
+                r.ray.t_world(&f, out.t_entry),
+                r.ray.t_world(&f, out.t_exit),
+            )),
+            fraction_hit: Some(frac_hit),
+            detail: format!("node {node:?}\n  out {out:?}"),
+        })
+    };
+    campaign_loop(&ctx.name(), ctx.k, seed, n, adversarial, run, progress)
 }
 
 /// A case quantised for the float tester of format `cf` with `k` planes (as [`fix_case`]).
@@ -335,40 +363,19 @@ pub fn cull_float_campaign(
     seed: u64,
     n: u64,
     adversarial: f64,
-    mut progress: impl FnMut(u64),
+    progress: impl FnMut(u64),
 ) -> Result<CullStats, String> {
-    let mut gen = CullGen::new(seed, adversarial, k, CULL_R);
-    let mut st = CullStats::default();
     let f = cf.f;
-    while st.vectors < n {
-        let c = gen.case();
-        let Ok((r, node, exact_planes)) = float_case(&cf, &c) else {
-            continue;
-        };
-        let ex = clip_exact(&c.ray, &c.bounds, &exact_planes);
+    let run = |c: &CullCase| {
+        let (r, node, exact_planes) = float_case(&cf, c).ok()?;
         let out = golden::plane_float::node_float(&cf, k, &r, &node);
-        let (v, th) = judge_case(&c, &ex, out.hit, || {
-            golden::plane_float::out_interval(&f, &out)
-        });
-        st.vectors += 1;
-        st.exact_culled += u64::from(!ex.hit);
-        st.culled += u64::from(!out.hit);
-        st.tri_hits += u64::from(th);
-        if let Verdict::Violation(why) = v {
-            st.violations += 1;
-            return Err(format!(
-                "{} k{k}: case {} ({:?}): {why}\n  ray {:?}\n  box {:?}\n  tri {:?}\n  node {node:?}\n  out {out:?}",
-                cf.name(),
-                st.vectors,
-                c.kind,
-                c.ray,
-                c.bounds,
-                c.tri
-            ));
-        }
-        if st.vectors % 65536 == 0 {
-            progress(st.vectors);
-        }
-    }
-    Ok(st)
+        Some(CaseRun {
+            exact: clip_exact(&c.ray, &c.bounds, &exact_planes),
+            hit: out.hit,
+            interval: golden::plane_float::out_interval(&f, &out),
+            fraction_hit: None,
+            detail: format!("node {node:?}\n  out {out:?}"),
+        })
+    };
+    campaign_loop(&cf.name(), k, seed, n, adversarial, run, progress)
 }

@@ -6,7 +6,6 @@
 use golden::fixed::FixFormat;
 use golden::plane_fix::{CullFixFormat, MAX_PLANES};
 use rtl::plane_fix::PlaneFixIo;
-use rtl::SlabIo;
 use tb::dut::run_checked;
 use tb::plane_tb::{cull_fix_campaign, node_fix_vectors, CullFixCtx};
 use tb::rtl_sim::SlabRtl;
