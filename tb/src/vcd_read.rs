@@ -76,4 +76,24 @@ impl Trace {
             .filter(|&&t| t > from && t <= to)
             .count()
     }
+
+    /// Checks that `valid_out` rises exactly `latency` clock edges after each rise of `valid_in`, and
+    /// that both rise `rises` times (an isolated test rises once; a back-to-back burst once in all).
+    pub fn check_valid_latency(&self, rises: usize, latency: usize) -> Result<(), String> {
+        let (ins, outs) = (self.rises("valid_in"), self.rises("valid_out"));
+        if ins.len() != rises || outs.len() != rises {
+            return Err(format!(
+                "expected {rises} rises each: valid_in rises at {ins:?}, valid_out at {outs:?}"
+            ));
+        }
+        for (i, o) in ins.iter().zip(&outs) {
+            let n = self.edges_between(*i, *o);
+            if n != latency {
+                return Err(format!(
+                    "valid_in at {i}, valid_out at {o}: {n} clock edges, expected {latency}"
+                ));
+            }
+        }
+        Ok(())
+    }
 }

@@ -77,18 +77,9 @@ fn valid_leaves_latency_clocks_after_it_enters() {
         assert_eq!(n, 4);
     }
     let trace = read_trace(&path, &["valid_in", "valid_out"]).unwrap();
-    let (ins, outs) = (trace.rises("valid_in"), trace.rises("valid_out"));
-    assert_eq!(
-        (ins.len(), outs.len()),
-        (2, 2),
-        "valid_in {ins:?} valid_out {outs:?}"
-    );
-    for (i, o) in ins.iter().zip(&outs) {
-        assert_eq!(
-            trace.edges_between(*i, *o),
-            rtl::plane_fix::PLANE_FIX_LATENCY
-        );
-    }
+    trace
+        .check_valid_latency(2, rtl::plane_fix::PLANE_FIX_LATENCY)
+        .unwrap_or_else(|e| panic!("{e}"));
 }
 
 fn export<S: PlaneFixIo>(c: &CullFixCtx) -> (String, std::path::PathBuf) {

@@ -30,18 +30,10 @@ fn valid_leaves_latency_clocks_after_it_enters() {
         assert_eq!(n, 6);
     }
     let trace = read_trace(&path, &["valid_in", "valid_out"]).unwrap();
-    let ins = trace.rises("valid_in");
-    let outs = trace.rises("valid_out");
     // Isolated tests: one rise each; the burst: one more rise.
-    assert_eq!(ins.len(), 4, "valid_in rises at {ins:?}");
-    assert_eq!(outs.len(), 4, "valid_out rises at {outs:?}");
-    for (i, o) in ins.iter().zip(&outs) {
-        assert_eq!(
-            trace.edges_between(*i, *o),
-            rtl::SLAB_FIX_LATENCY,
-            "valid_in at {i}, valid_out at {o}"
-        );
-    }
+    trace
+        .check_valid_latency(4, rtl::SLAB_FIX_LATENCY)
+        .unwrap_or_else(|e| panic!("{e}"));
 }
 
 /// The same for the float tester (binary16): `valid_out` rises SLAB_FLOAT_LATENCY edges after `valid_in`.
@@ -69,17 +61,7 @@ fn float_valid_leaves_latency_clocks_after_it_enters() {
         assert_eq!(n, 4);
     }
     let trace = read_trace(&path, &["valid_in", "valid_out"]).unwrap();
-    let (ins, outs) = (trace.rises("valid_in"), trace.rises("valid_out"));
-    assert_eq!(
-        (ins.len(), outs.len()),
-        (2, 2),
-        "valid_in rises at {ins:?}, valid_out at {outs:?}"
-    );
-    for (i, o) in ins.iter().zip(&outs) {
-        assert_eq!(
-            trace.edges_between(*i, *o),
-            rtl::SLAB_FLOAT_LATENCY,
-            "valid_in at {i}, valid_out at {o}"
-        );
-    }
+    trace
+        .check_valid_latency(2, rtl::SLAB_FLOAT_LATENCY)
+        .unwrap_or_else(|e| panic!("{e}"));
 }
