@@ -124,3 +124,30 @@ macro_rules! with_slab_float {
         }
     }};
 }
+
+pub mod fp_recip;
+pub mod plane_float;
+pub mod plane_float_export;
+
+pub use plane_float::{PlaneFloat, PLANE_FLOAT_LATENCY};
+
+/// The chained float node tester (slab + 1 cull plane) in binary16.
+pub type PlaneFloatE5M10K1 = PlaneFloat<5, 10, 16, 1>;
+/// The chained float node tester (slab + 2 cull planes) in binary16.
+pub type PlaneFloatE5M10K2 = PlaneFloat<5, 10, 16, 2>;
+/// The chained float node tester (slab + 4 cull planes) in binary16.
+pub type PlaneFloatE5M10K4 = PlaneFloat<5, 10, 16, 4>;
+/// The chained float node tester (slab + 8 cull planes, the most) in binary16.
+pub type PlaneFloatE5M10K8 = PlaneFloat<5, 10, 16, 8>;
+/// The chained float node tester (slab + 1 cull plane) in bfloat16.
+pub type PlaneFloatE8M7K1 = PlaneFloat<8, 7, 16, 1>;
+/// The chained float node tester (slab + 2 cull planes) in bfloat16.
+pub type PlaneFloatE8M7K2 = PlaneFloat<8, 7, 16, 2>;
+/// The chained float node tester (slab + 4 cull planes) in bfloat16.
+pub type PlaneFloatE8M7K4 = PlaneFloat<8, 7, 16, 4>;
+/// The chained float node tester (slab + 1 cull plane) in binary32.
+pub type PlaneFloatE8M23K1 = PlaneFloat<8, 23, 32, 1>;
+/// The chained float node tester (slab + 2 cull planes) in binary32.
+pub type PlaneFloatE8M23K2 = PlaneFloat<8, 23, 32, 2>;
+/// The chained float node tester (slab + 4 cull planes) in binary32.
+pub type PlaneFloatE8M23K4 = PlaneFloat<8, 23, 32, 4>;

@@ -10,11 +10,14 @@
 //! | [`verilator`] | builds a C++ harness around exported Verilog and streams vectors through it |
 //! | [`campaign`] | large streamed conservativeness and cross-simulation campaigns with progress |
 //! | [`strategies`] | proptest strategies over quantised slab vectors |
+//! | [`plane_tb`] | the fixed cull-plane tester's port encoding, vector streams and the cull-plane campaigns |
+//! | [`plane_float_tb`] | the float cull-plane tester's port encoding and vector streams |
 //! | [`slab_tb`] | port encoding and the cross-simulation loop, for both datapaths ([`slab_tb::SlabCtx`]) |
 
 pub mod campaign;
 pub mod dut;
 pub mod engine;
+pub mod plane_float_tb;
 pub mod plane_tb;
 pub mod rtl_sim;
 pub mod slab_tb;
