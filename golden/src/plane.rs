@@ -30,6 +30,41 @@ use glam::DVec3;
 use num_rational::BigRational;
 use num_traits::{Signed, Zero};
 
+/// What a node of a cull-plane datapath stores, in bits: its box, and per plane a normal (three
+/// components) and an offset. The storage figures of the node format (issue 4, item 3) come from here.
+///
+/// Two layouts:
+/// * **own normals**: each node stores its box and `K` whole planes;
+/// * **shared normals** (claim 8 of US 2025/0259373): the `s` children of a node use one set of `K`
+///   normals, stored once for the group (beside the children's pointer in the parent, or in the first
+///   child), and each child stores only its box and `K` offsets. [`crate::planegen::generate_shared`]
+///   makes such planes.
+///
+/// Every record is rounded up to whole bytes: a node record, and a group's normal set.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct NodeLayout {
+    /// The six box coordinates.
+    pub box_bits: u32,
+    /// One normal (three components).
+    pub normal_bits: u32,
+    /// One offset.
+    pub offset_bits: u32,
+}
+
+impl NodeLayout {
+    /// Bytes of a node with `k` planes of its own.
+    pub fn own_bytes(&self, k: u32) -> u32 {
+        (self.box_bits + k * (self.normal_bits + self.offset_bits)).div_ceil(8)
+    }
+    /// Bytes per node when groups of `siblings` nodes share one set of `k` normals: the node's box and
+    /// offsets plus its share of the group's normal set.
+    pub fn shared_bytes(&self, k: u32, siblings: u32) -> f64 {
+        let node = (self.box_bits + k * self.offset_bits).div_ceil(8);
+        let normals = (k * self.normal_bits).div_ceil(8);
+        f64::from(node) + f64::from(normals) / f64::from(siblings.max(1))
+    }
+}
+
 /// A plane in world space: geometry of the node satisfies `n . (p - c) <= w`, `c` the box centroid.
 /// A zero normal is an unused plane slot (it culls nothing).
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -182,6 +217,22 @@ mod tests {
             bounds: Aabb::new(DVec3::ZERO, DVec3::splat(2.0)).unwrap(),
             planes,
         }
+    }
+
+    #[test]
+    fn node_bytes_with_own_and_shared_normals() {
+        // b16 cull format: G = 16, N = 8, W = 28. Box 96 bits; a plane 24 + 28 bits.
+        let l = crate::plane_fix::CullFixFormat::over(crate::fixed::FixFormat::b16()).layout();
+        assert_eq!((l.box_bits, l.normal_bits, l.offset_bits), (96, 24, 28));
+        assert_eq!(l.own_bytes(0), 12);
+        assert_eq!(l.own_bytes(4), 38); // 304 bits
+        // Siblings of a binary tree: 96 + 4 * 28 = 208 bits (26 bytes), plus half of 12 bytes of normals.
+        assert_eq!(l.shared_bytes(4, 2), 32.0);
+        assert_eq!(l.shared_bytes(1, 2), 16.0 + 1.5); // 124 bits round up to 16 bytes
+        // fp16: everything 16 bits; K = 2 own: 6 + 8 values, 28 bytes; shared by 4: 16 + 12 / 4.
+        let f = crate::plane_float::CullFloatFormat::over(crate::float::FloatFormat::FP16).layout();
+        assert_eq!(f.own_bytes(2), 28);
+        assert_eq!(f.shared_bytes(2, 4), 19.0);
     }
 
     #[test]

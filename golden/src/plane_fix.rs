@@ -159,9 +159,14 @@ impl CullFixFormat {
             (1i64 << (self.w_bits() - 1)) - 1,
         )
     }
-    /// Bytes of one stored plane (`3N + W` bits, rounded up to whole bytes).
-    pub fn plane_bytes(&self) -> u32 {
-        (3 * self.n + self.w_bits()).div_ceil(8)
+    /// What a node stores: a box of six `G`-bit grid coordinates, per plane an `N`-bit normal
+    /// component times three and a `W`-bit offset.
+    pub fn layout(&self) -> crate::plane::NodeLayout {
+        crate::plane::NodeLayout {
+            box_bits: 6 * self.base.g,
+            normal_bits: 3 * self.n,
+            offset_bits: self.w_bits(),
+        }
     }
 }
 

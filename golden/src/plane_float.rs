@@ -69,9 +69,15 @@ impl CullFloatFormat {
     pub fn name(&self) -> String {
         format!("{}_r{}", self.f.name(), self.r)
     }
-    /// Bytes of one stored plane (four values).
-    pub fn plane_bytes(&self) -> u32 {
-        (4 * self.f.width()).div_ceil(8)
+    /// What a node stores: six box coordinates, per plane three normal components and an offset, all
+    /// in the format.
+    pub fn layout(&self) -> crate::plane::NodeLayout {
+        let b = self.f.width();
+        crate::plane::NodeLayout {
+            box_bits: 6 * b,
+            normal_bits: 3 * b,
+            offset_bits: b,
+        }
     }
 }
 

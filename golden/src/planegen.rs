@@ -295,9 +295,20 @@ fn best_k(mut cands: Vec<Cand>, k: usize) -> Vec<usize> {
     cands.into_iter().take(k).map(|c| c.j).collect()
 }
 
-/// Generates up to `k` planes for every node of `bvh` (built over `tris`). Errors: `k` outside
-/// `1..=MAX_PLANES`, or a tree that does not match the triangles.
-pub fn generate(bvh: &Bvh, tris: &[Triangle], k: usize) -> Result<Vec<Vec<Plane>>, Error> {
+/// The best direction of each of the 8 octants by `score` (ties: lower index), then the `K` best.
+fn octant_best(dirs: &[DVec3], score: impl Fn(usize) -> f64) -> Vec<Cand> {
+    let mut best: [Option<Cand>; 8] = Default::default();
+    for (j, &n) in dirs.iter().enumerate() {
+        let frac = score(j);
+        let o = octant(n);
+        if best[o].as_ref().is_none_or(|b| frac > b.frac) {
+            best[o] = Some(Cand { j, frac });
+        }
+    }
+    best.into_iter().flatten().collect()
+}
+
+fn check_args(bvh: &Bvh, tris: &[Triangle], k: usize) -> Result<(), Error> {
     if !(1..=MAX_PLANES).contains(&k) {
         return Err(Error::BadFormat {
             param: "planes per node",
@@ -312,33 +323,47 @@ pub fn generate(bvh: &Bvh, tris: &[Triangle], k: usize) -> Result<Vec<Vec<Plane>
             tris.len()
         )));
     }
+    Ok(())
+}
+
+/// The plane of direction `j` fitted tightly (rounded up) to node `i`'s subtree.
+fn fitted(bvh: &Bvh, ext: &[Vec<DVec3>], dirs: &[DVec3], i: usize, j: usize) -> Plane {
+    let n = dirs[j];
+    Plane {
+        n,
+        w: offset_up(n, ext[i][j], &bvh.nodes[i].bounds),
+    }
+}
+
+/// The share of node `i`'s box that direction `j`'s tight plane cuts off (f64, for ranking).
+fn fraction(bvh: &Bvh, ext: &[Vec<DVec3>], dirs: &[DVec3], i: usize, j: usize) -> f64 {
+    let b = bvh.nodes[i].bounds;
+    let c = (b.min + b.max) * 0.5;
+    let n = dirs[j];
+    empty_fraction(
+        &b,
+        &Plane {
+            n,
+            w: n.dot(ext[i][j] - c),
+        },
+    )
+}
+
+/// Generates up to `k` planes for every node of `bvh` (built over `tris`). Errors: `k` outside
+/// `1..=MAX_PLANES`, or a tree that does not match the triangles.
+pub fn generate(bvh: &Bvh, tris: &[Triangle], k: usize) -> Result<Vec<Vec<Plane>>, Error> {
+    check_args(bvh, tris, k)?;
     let dirs = directions();
     let ext = extreme_points(bvh, tris, &dirs);
     let mut chosen: Vec<Vec<usize>> = vec![Vec::new(); bvh.nodes.len()];
     let mut planes: Vec<Vec<Plane>> = vec![Vec::new(); bvh.nodes.len()];
     for i in (0..bvh.nodes.len()).rev() {
-        let b = bvh.nodes[i].bounds;
-        let c = (b.min + b.max) * 0.5;
-        let score = |j: usize| {
-            let n = dirs[j];
-            let w = n.dot(ext[i][j] - c);
-            Cand {
-                j,
-                frac: empty_fraction(&b, &Plane { n, w }),
-            }
+        let score = |j: usize| Cand {
+            j,
+            frac: fraction(bvh, &ext, &dirs, i, j),
         };
         let cands: Vec<Cand> = match bvh.nodes[i].kind {
-            NodeKind::Leaf { .. } => {
-                let mut best: [Option<Cand>; 8] = Default::default();
-                for (j, &n) in dirs.iter().enumerate() {
-                    let s = score(j);
-                    let o = octant(n);
-                    if best[o].as_ref().is_none_or(|b| s.frac > b.frac) {
-                        best[o] = Some(s);
-                    }
-                }
-                best.into_iter().flatten().collect()
-            }
+            NodeKind::Leaf { .. } => octant_best(&dirs, |j| score(j).frac),
             NodeKind::Inner { left, right } => {
                 let mut js: Vec<usize> =
                     chosen[left].iter().chain(&chosen[right]).copied().collect();
@@ -355,17 +380,57 @@ pub fn generate(bvh: &Bvh, tris: &[Triangle], k: usize) -> Result<Vec<Vec<Plane>
             if keep.len() == k {
                 break;
             }
-            let n = dirs[j];
-            let p = Plane {
-                n,
-                w: offset_up(n, ext[i][j], &b),
-            };
-            if cuts_something(&b, &p) {
+            let p = fitted(bvh, &ext, &dirs, i, j);
+            if cuts_something(&bvh.nodes[i].bounds, &p) {
                 keep.push(j);
                 planes[i].push(p);
             }
         }
         chosen[i] = keep;
+    }
+    Ok(planes)
+}
+
+/// Planes with one normal set per pair of siblings (claim 8 of US 2025/0259373: sibling nodes share
+/// their cull-plane normals, so a node stores only its offsets and the pair stores the normals once).
+///
+/// For the two children of every inner node, the candidates are all 98 directions scored by the sum of
+/// the two children's empty fractions; the best per octant, then the `k` best that cut something from at
+/// least one child. Both children get every chosen normal, each with its own tight offset, in the same
+/// slot order (a plane that cuts nothing from one child is still stored there: it never culls, and a
+/// fixed-point fit turns it into the unused plane). The root, without a sibling, chooses alone. Every
+/// offset is fitted as in [`generate`], so geometry never lies on an empty side.
+pub fn generate_shared(bvh: &Bvh, tris: &[Triangle], k: usize) -> Result<Vec<Vec<Plane>>, Error> {
+    check_args(bvh, tris, k)?;
+    let dirs = directions();
+    let ext = extreme_points(bvh, tris, &dirs);
+    let mut planes: Vec<Vec<Plane>> = vec![Vec::new(); bvh.nodes.len()];
+    let mut groups: Vec<Vec<usize>> = vec![vec![0]];
+    for nd in &bvh.nodes {
+        if let NodeKind::Inner { left, right } = nd.kind {
+            groups.push(vec![left, right]);
+        }
+    }
+    for g in groups {
+        let cands = octant_best(&dirs, |j| {
+            g.iter().map(|&i| fraction(bvh, &ext, &dirs, i, j)).sum()
+        });
+        let mut taken = 0;
+        for j in best_k(cands.into_iter().filter(|c| c.frac > 0.0).collect(), 8) {
+            if taken == k {
+                break;
+            }
+            let ps: Vec<Plane> = g.iter().map(|&i| fitted(bvh, &ext, &dirs, i, j)).collect();
+            if g.iter()
+                .zip(&ps)
+                .any(|(&i, p)| cuts_something(&bvh.nodes[i].bounds, p))
+            {
+                for (&i, p) in g.iter().zip(ps) {
+                    planes[i].push(p);
+                }
+                taken += 1;
+            }
+        }
     }
     Ok(planes)
 }
@@ -443,7 +508,14 @@ mod tests {
         assert!(!cuts_something(&b, &Plane { n, w: 1.5 }));
     }
 
-    fn check_all_vertices_inside(bvh: &Bvh, tris: &[Triangle], planes: &[Vec<Plane>]) -> usize {
+    /// Every vertex of a node's subtree on the non-empty side of each of its planes (exactly); with
+    /// `must_cut`, every plane cuts something from its box. Returns the number of planes that cut.
+    fn check_all_vertices_inside(
+        bvh: &Bvh,
+        tris: &[Triangle],
+        planes: &[Vec<Plane>],
+        must_cut: bool,
+    ) -> usize {
         let mut n = 0;
         for (i, ps) in planes.iter().enumerate() {
             let b = bvh.nodes[i].bounds;
@@ -453,12 +525,13 @@ mod tests {
                 .flat_map(|&t| tris[t].v)
                 .collect();
             for p in ps {
-                assert!(cuts_something(&b, p));
+                let cuts = cuts_something(&b, p);
+                assert!(cuts || !must_cut, "node {i} plane {p:?} cuts nothing");
                 let e = ExactPlane::from_world(p, &b);
                 for v in &verts {
                     assert!(!e.side(*v).is_positive(), "node {i} plane {p:?} vertex {v}");
                 }
-                n += 1;
+                n += usize::from(cuts);
             }
         }
         n
@@ -475,14 +548,52 @@ mod tests {
             let planes = generate(&bvh, &tris, k).unwrap();
             assert_eq!(planes.len(), bvh.nodes.len());
             assert!(planes.iter().all(|p| p.len() <= k));
-            let n = check_all_vertices_inside(&bvh, &tris, &planes);
+            let n = check_all_vertices_inside(&bvh, &tris, &planes, true);
             assert!(n > bvh.nodes.len() / 2, "only {n} planes");
         }
         // Scenes with exact ties and flat boxes (axis-aligned walls) and grass.
         for s in [crate::scene::room(1, 30), crate::scene::grass(1, 300)] {
             let bvh = Bvh::build(&s.tris, 4).unwrap();
             let planes = generate(&bvh, &s.tris, 4).unwrap();
-            check_all_vertices_inside(&bvh, &s.tris, &planes);
+            check_all_vertices_inside(&bvh, &s.tris, &planes, true);
+        }
+    }
+
+    #[test]
+    fn siblings_share_normals_and_keep_their_geometry_inside() {
+        let s = crate::scene::grass(1, 300);
+        let bvh = Bvh::build(&s.tris, 4).unwrap();
+        for k in [1, 4] {
+            let shared = generate_shared(&bvh, &s.tris, k).unwrap();
+            let cutting = check_all_vertices_inside(&bvh, &s.tris, &shared, false);
+            assert!(cutting > bvh.nodes.len() / 2, "only {cutting} planes cut");
+            for nd in &bvh.nodes {
+                if let NodeKind::Inner { left, right } = nd.kind {
+                    let (a, b) = (&shared[left], &shared[right]);
+                    assert!(a.len() <= k && a.len() == b.len());
+                    for (p, q) in a.iter().zip(b) {
+                        assert_eq!(p.n, q.n, "siblings {left} {right}");
+                        assert!(
+                            cuts_something(&bvh.nodes[left].bounds, p)
+                                || cuts_something(&bvh.nodes[right].bounds, q)
+                        );
+                    }
+                }
+            }
+            // The pair's normals are a compromise, but not a degenerate one: summed over the nodes, the
+            // best plane's empty fraction keeps at least half of what each node's own choice reaches.
+            let own = generate(&bvh, &s.tris, k).unwrap();
+            let best = |ps: &[Vec<Plane>]| -> f64 {
+                ps.iter()
+                    .enumerate()
+                    .map(|(i, p)| {
+                        p.iter()
+                            .map(|p| empty_fraction(&bvh.nodes[i].bounds, p))
+                            .fold(0.0, f64::max)
+                    })
+                    .sum()
+            };
+            assert!(best(&shared) > 0.5 * best(&own), "{} vs {}", best(&shared), best(&own));
         }
     }
 
@@ -545,7 +656,7 @@ mod tests {
             })
             .count();
         assert!((kept as f64 / m as f64) < 0.2, "kept {kept} of {m}");
-        check_all_vertices_inside(&bvh, &[t], &planes);
+        check_all_vertices_inside(&bvh, &[t], &planes, true);
     }
 
     #[test]

@@ -142,9 +142,82 @@ fn subtree_vertices(bvh: &Bvh, tris: &[golden::tri::Triangle], node: usize) -> V
         .collect()
 }
 
-/// Triangle tests with `K` planes per node against AABB-only traversal, per scene, format and K, on
-/// primary rays (`w x h`) and one bounce ray per primary hit; every closest hit compared with the
-/// AABB-only (exact) traversal's. Writes `<out>/cull_scenes.csv` and returns a markdown table.
+/// Every node of `bvh` stored in a fixed format: its box, and its first `k` planes of `planes` fitted to
+/// its subtree (`k = 0`: the AABB-only tester of the same format).
+fn fix_nodes(
+    cf: &CullFixFormat,
+    map: &GridMap,
+    bvh: &Bvh,
+    tris: &[golden::tri::Triangle],
+    planes: &[Vec<golden::plane::Plane>],
+    k: usize,
+) -> Result<Vec<FixNode>, String> {
+    let mut nodes = Vec::with_capacity(bvh.nodes.len());
+    for (i, nd) in bvh.nodes.iter().enumerate() {
+        let mut n = FixNode {
+            b: map.quantize_box(&nd.bounds).map_err(|e| e.to_string())?,
+            ..Default::default()
+        };
+        let verts = subtree_vertices(bvh, tris, i);
+        for (j, p) in planes[i].iter().take(k).enumerate() {
+            n.planes[j] =
+                plane_fix::fit_plane(cf, map, &n.b, p.n, &verts).map_err(|e| e.to_string())?;
+        }
+        nodes.push(n);
+    }
+    Ok(nodes)
+}
+
+/// The float counterpart of [`fix_nodes`].
+fn float_nodes(
+    cf: &CullFloatFormat,
+    bvh: &Bvh,
+    tris: &[golden::tri::Triangle],
+    planes: &[Vec<golden::plane::Plane>],
+    k: usize,
+) -> Result<Vec<FloatNode>, String> {
+    let mut nodes = Vec::with_capacity(bvh.nodes.len());
+    for (i, nd) in bvh.nodes.iter().enumerate() {
+        let mut n = FloatNode {
+            b: golden::slab_float::quantize_box(&cf.f, &nd.bounds).map_err(|e| e.to_string())?,
+            ..Default::default()
+        };
+        let verts = subtree_vertices(bvh, tris, i);
+        for (j, p) in planes[i].iter().take(k).enumerate() {
+            n.planes[j] =
+                plane_float::fit_plane(cf, &n.b, p.n, &verts).map_err(|e| e.to_string())?;
+        }
+        nodes.push(n);
+    }
+    Ok(nodes)
+}
+
+/// Which planes a traversal uses: none (the format's own AABB-only tester), each node's own normals, or
+/// normals shared by siblings (claim 8).
+#[derive(Clone, Copy, PartialEq, Eq)]
+enum Normals {
+    None,
+    Own,
+    Shared,
+}
+
+impl Normals {
+    fn name(self) -> &'static str {
+        match self {
+            Normals::None => "-",
+            Normals::Own => "own",
+            Normals::Shared => "shared",
+        }
+    }
+}
+
+/// Triangle tests with `K` planes per node, per scene, format, K and normal layout (own, or shared by the
+/// two children of a node), on primary rays (`w x h`) and one bounce ray per primary hit, against two
+/// baselines: AABB-only traversal in exact arithmetic, and the same format's tester with no planes
+/// (`K = 0`), which isolates what the planes save from what quantising the boxes costs. Every closest hit
+/// is compared with the exact AABB-only traversal's. Also the bytes per node of each layout
+/// ([`golden::plane::NodeLayout`]; shared: binary tree, two siblings). Writes `<out>/cull_scenes.csv` and
+/// returns a markdown table.
 pub fn scenes(
     names: &[String],
     ks: &[usize],
@@ -154,8 +227,8 @@ pub fn scenes(
     h: usize,
     out: &Path,
 ) -> Result<String, String> {
-    let mut csv = String::from("scene,rays,datapath,format,k,tri_tests,aabb_tri_tests,ratio,node_tests,aabb_node_tests,closest_hit_mismatches\n");
-    let mut table = String::from("| scene | rays | datapath | format | K | triangle tests | AABB-only | saved | closest hits differing |\n|---|---|---|---|---|---|---|---|---|\n");
+    let mut csv = String::from("scene,rays,datapath,format,k,normals,node_bytes,tri_tests,same_format_k0_tri_tests,exact_aabb_tri_tests,saved_vs_k0,saved_vs_exact_aabb,node_tests,closest_hit_mismatches\n");
+    let mut table = String::from("| scene | rays | datapath | format | K | normals | bytes/node | triangle tests | saved vs same format K=0 | saved vs exact AABB | closest hits differing |\n|---|---|---|---|---|---|---|---|---|---|---|\n");
     for name in names {
         let sc = golden::scene::by_name(name, 1, None).map_err(|e| e.to_string())?;
         let bvh = Bvh::build(&sc.tris, 4).map_err(|e| e.to_string())?;
@@ -168,73 +241,78 @@ pub fn scenes(
             (b.min - ext).min(sc.camera.eye),
             (b.max + ext).max(sc.camera.eye),
         );
-        let world_planes: Vec<_> = ks
-            .iter()
-            .map(|&k| golden::planegen::generate(&bvh, &sc.tris, k))
-            .collect::<Result<_, _>>()
-            .map_err(|e| e.to_string())?;
+        // Per K: (normals, planes of every node).
+        let mut plane_sets = vec![];
+        for &k in ks {
+            for (nm, gen) in [
+                (Normals::Own, golden::planegen::generate as fn(_, _, _) -> _),
+                (Normals::Shared, golden::planegen::generate_shared),
+            ] {
+                plane_sets.push((k, nm, gen(&bvh, &sc.tris, k).map_err(|e| e.to_string())?));
+            }
+        }
+        let none: Vec<Vec<golden::plane::Plane>> = vec![vec![]; bvh.nodes.len()];
+        let configs: Vec<(usize, Normals, &Vec<Vec<golden::plane::Plane>>)> =
+            std::iter::once((0, Normals::None, &none))
+                .chain(plane_sets.iter().map(|(k, nm, p)| (*k, *nm, p)))
+                .collect();
         for (set, rays) in [("primary", &prim), ("bounce", &sec.bounce)] {
             let (base_hits, base) = trace(&bvh, &sc.tris, rays, &mut AabbOnly::new(&bvh));
             let mut emit = |dp: &str,
                             fname: String,
                             k: usize,
-                            hits: Vec<Option<golden::traverse::Hit>>,
-                            st: golden::traverse::TraversalStats| {
+                            nm: Normals,
+                            bytes: f64,
+                            k0: u64,
+                            (hits, st): (Vec<Option<golden::traverse::Hit>>, golden::traverse::TraversalStats)| {
                 let diff = hits.iter().zip(&base_hits).filter(|(a, b)| a != b).count();
-                let ratio = st.tri_tests as f64 / base.tri_tests.max(1) as f64;
+                let saved = |b: u64| 1.0 - st.tri_tests as f64 / b.max(1) as f64;
                 let _ = writeln!(
                     csv,
-                    "{name},{set},{dp},{fname},{k},{},{},{ratio:.4},{},{},{diff}",
-                    st.tri_tests, base.tri_tests, st.node_tests, base.node_tests
+                    "{name},{set},{dp},{fname},{k},{},{bytes},{},{k0},{},{:.4},{:.4},{},{diff}",
+                    nm.name(),
+                    st.tri_tests,
+                    base.tri_tests,
+                    saved(k0),
+                    saved(base.tri_tests),
+                    st.node_tests
                 );
                 let _ = writeln!(
                     table,
-                    "| {name} | {set} | {dp} | {fname} | {k} | {} | {} | {:.1}% | {diff} |",
+                    "| {name} | {set} | {dp} | {fname} | {k} | {} | {bytes} | {} | {:.1}% | {:.1}% | {diff} |",
+                    nm.name(),
                     st.tri_tests,
-                    base.tri_tests,
-                    100.0 * (1.0 - ratio)
+                    100.0 * saved(k0),
+                    100.0 * saved(base.tri_tests)
                 );
             };
-            for (ki, &k) in ks.iter().enumerate() {
-                let planes = &world_planes[ki];
-                for fmt in fixed {
-                    let cf = CullFixFormat::over(*fmt);
-                    let map = GridMap::for_bounds(*fmt, lo, hi).map_err(|e| e.to_string())?;
-                    let mut nodes = Vec::with_capacity(bvh.nodes.len());
-                    for (i, nd) in bvh.nodes.iter().enumerate() {
-                        let mut n = FixNode {
-                            b: map.quantize_box(&nd.bounds).map_err(|e| e.to_string())?,
-                            ..Default::default()
-                        };
-                        let verts = subtree_vertices(&bvh, &sc.tris, i);
-                        for (j, p) in planes[i].iter().take(k).enumerate() {
-                            n.planes[j] = plane_fix::fit_plane(&cf, &map, &n.b, p.n, &verts)
-                                .map_err(|e| e.to_string())?;
-                        }
-                        nodes.push(n);
+            let bytes = |l: golden::plane::NodeLayout, k: usize, nm: Normals| match nm {
+                Normals::Shared => l.shared_bytes(k as u32, 2),
+                _ => f64::from(l.own_bytes(k as u32)),
+            };
+            for fmt in fixed {
+                let cf = CullFixFormat::over(*fmt);
+                let map = GridMap::for_bounds(*fmt, lo, hi).map_err(|e| e.to_string())?;
+                let mut k0 = 0;
+                for &(k, nm, planes) in &configs {
+                    let nodes = fix_nodes(&cf, &map, &bvh, &sc.tris, planes, k)?;
+                    let run = trace(&bvh, &sc.tris, rays, &mut FixTester { cf, k, map, nodes });
+                    if k == 0 {
+                        k0 = run.1.tri_tests;
                     }
-                    let (hits, st) =
-                        trace(&bvh, &sc.tris, rays, &mut FixTester { cf, k, map, nodes });
-                    emit("fixed", fmt.name(), k, hits, st);
+                    emit("fixed", fmt.name(), k, nm, bytes(cf.layout(), k, nm), k0, run);
                 }
-                for f in floats {
-                    let cf = CullFloatFormat::over(*f);
-                    let mut nodes = Vec::with_capacity(bvh.nodes.len());
-                    for (i, nd) in bvh.nodes.iter().enumerate() {
-                        let mut n = FloatNode {
-                            b: golden::slab_float::quantize_box(f, &nd.bounds)
-                                .map_err(|e| e.to_string())?,
-                            ..Default::default()
-                        };
-                        let verts = subtree_vertices(&bvh, &sc.tris, i);
-                        for (j, p) in planes[i].iter().take(k).enumerate() {
-                            n.planes[j] = plane_float::fit_plane(&cf, &n.b, p.n, &verts)
-                                .map_err(|e| e.to_string())?;
-                        }
-                        nodes.push(n);
+            }
+            for f in floats {
+                let cf = CullFloatFormat::over(*f);
+                let mut k0 = 0;
+                for &(k, nm, planes) in &configs {
+                    let nodes = float_nodes(&cf, &bvh, &sc.tris, planes, k)?;
+                    let run = trace(&bvh, &sc.tris, rays, &mut FloatTester { cf, k, nodes });
+                    if k == 0 {
+                        k0 = run.1.tri_tests;
                     }
-                    let (hits, st) = trace(&bvh, &sc.tris, rays, &mut FloatTester { cf, k, nodes });
-                    emit("float", f.name(), k, hits, st);
+                    emit("float", f.name(), k, nm, bytes(cf.layout(), k, nm), k0, run);
                 }
             }
         }

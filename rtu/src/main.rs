@@ -98,7 +98,9 @@ enum Cmd {
         #[arg(long, default_value_t = 1)]
         seed: u64,
     },
-    /// Cull planes on scenes: triangle tests saved against AABB-only traversal, closest hits compared.
+    /// Cull planes on scenes: triangle tests saved against AABB-only traversal (the same format with no
+    /// planes, and exact), with each node's own normals or normals shared by siblings, bytes per node,
+    /// closest hits compared with the exact reference.
     CullScenes {
         /// Scenes, comma separated.
         #[arg(long, default_value = "grass,room,mesh")]
