@@ -8,6 +8,12 @@
 //! CSV with this header (any column order):
 //! `tag,ox,oy,oz,dx,dy,dz,t_min,t_max,min_x,min_y,min_z,max_x,max_y,max_z`.
 //!
+//! Cull planes (the cull-plane tester, `rtu run --planes K`): JSON `"planes": [[nx, ny, nz, w], ...]`, CSV
+//! columns `p0_nx,p0_ny,p0_nz,p0_w` up to `p7_...` (a plane whose four cells are empty is absent). A plane
+//! is a world half-space relative to the box centroid `c`: the node's geometry lies where
+//! `n . (x - c) <= w` ([`crate::plane::Plane`]); at most [`MAX_VECTOR_PLANES`], each with a finite
+//! nonzero normal and a finite offset.
+//!
 //! Numbers may be written `inf`, `-inf` (JSON: as strings) where the field allows it (`t_min`, `t_max`).
 //! `tag` is optional and defaults to the vector's index. Every error names the line and the field.
 //!
@@ -16,16 +22,26 @@
 
 use crate::error::Error;
 use crate::geom::{Aabb, Ray};
+use crate::plane::Plane;
 use glam::DVec3;
 use serde_json::Value;
 use std::io::{BufRead, Write};
 
-/// One input vector: a tagged ray and box.
-#[derive(Clone, Copy, Debug, PartialEq)]
+/// One input vector: a tagged ray and box, and the box's cull planes (none for the slab tester).
+#[derive(Clone, Debug, PartialEq)]
 pub struct Vector {
     pub tag: u64,
     pub ray: Ray,
     pub bx: Aabb,
+    pub planes: Vec<Plane>,
+}
+
+/// Most cull planes a vector may carry.
+pub const MAX_VECTOR_PLANES: usize = 8;
+
+/// CSV column of component `c` (0-2 normal, 3 offset) of plane `k`.
+fn plane_col(k: usize, c: usize) -> String {
+    format!("p{k}_{}", ["nx", "ny", "nz", "w"][c])
 }
 
 /// File format of vectors and results.
@@ -75,8 +91,45 @@ fn json_num(v: &Value) -> Option<f64> {
     }
 }
 
+/// Checks the planes of a vector: at most [`MAX_VECTOR_PLANES`], finite nonzero normals, finite offsets.
+fn check_planes(src: &str, line: usize, planes: &[Plane]) -> Result<(), Error> {
+    if planes.len() > MAX_VECTOR_PLANES {
+        return Err(line_err(
+            src,
+            line,
+            "planes",
+            format!("{} planes, at most {MAX_VECTOR_PLANES}", planes.len()),
+        ));
+    }
+    for (k, p) in planes.iter().enumerate() {
+        if !p.n.is_finite() || p.n == DVec3::ZERO {
+            return Err(line_err(
+                src,
+                line,
+                &format!("planes[{k}] normal"),
+                format!("{} is not allowed: a plane needs a finite, nonzero normal", p.n),
+            ));
+        }
+        if !p.w.is_finite() {
+            return Err(line_err(
+                src,
+                line,
+                &format!("planes[{k}] offset"),
+                format!("{} is not allowed: the offset must be finite", p.w),
+            ));
+        }
+    }
+    Ok(())
+}
+
 /// Builds and validates the vector; a validation error is re-labelled with the line and field.
-fn build(src: &str, line: usize, tag: u64, f: &[f64; 14]) -> Result<Vector, Error> {
+fn build(
+    src: &str,
+    line: usize,
+    tag: u64,
+    f: &[f64; 14],
+    planes: Vec<Plane>,
+) -> Result<Vector, Error> {
     let ray = Ray {
         origin: DVec3::new(f[0], f[1], f[2]),
         dir: DVec3::new(f[3], f[4], f[5]),
@@ -95,7 +148,13 @@ fn build(src: &str, line: usize, tag: u64, f: &[f64; 14]) -> Result<Vector, Erro
     };
     ray.validate().map_err(relabel)?;
     bx.validate().map_err(relabel)?;
-    Ok(Vector { tag, ray, bx })
+    check_planes(src, line, &planes)?;
+    Ok(Vector {
+        tag,
+        ray,
+        bx,
+        planes,
+    })
 }
 
 fn parse_json_line(src: &str, line: usize, text: &str, index: u64) -> Result<Vector, Error> {
@@ -148,7 +207,30 @@ fn parse_json_line(src: &str, line: usize, text: &str, index: u64) -> Result<Vec
                 .ok_or_else(|| line_err(src, line, name, format!("`{x}` is not a number")))?,
         };
     }
-    build(src, line, tag, &f)
+    let mut planes = vec![];
+    if let Some(ps) = obj.get("planes") {
+        let ps = ps.as_array().ok_or_else(|| {
+            line_err(src, line, "planes", "expected an array of [nx, ny, nz, w] arrays")
+        })?;
+        for (k, p) in ps.iter().enumerate() {
+            let field = format!("planes[{k}]");
+            let q = p
+                .as_array()
+                .filter(|q| q.len() == 4)
+                .ok_or_else(|| line_err(src, line, &field, "expected [nx, ny, nz, w]"))?;
+            let mut v = [0.0; 4];
+            for (c, x) in q.iter().enumerate() {
+                v[c] = json_num(x).ok_or_else(|| {
+                    line_err(src, line, &format!("{field}[{c}]"), format!("`{x}` is not a number"))
+                })?;
+            }
+            planes.push(Plane {
+                n: DVec3::new(v[0], v[1], v[2]),
+                w: v[3],
+            });
+        }
+    }
+    build(src, line, tag, &f, planes)
 }
 
 /// Streams vectors from a reader. Each item is a vector or an error naming the line and field.
@@ -198,9 +280,29 @@ pub fn read_vectors<'a, R: BufRead + Send + 'a>(
                         }
                     }
                 }
-                Ok(cols)
+                // Optional plane columns: all four of a plane, or none.
+                let mut pcols = vec![];
+                for k in 0..MAX_VECTOR_PLANES {
+                    let found: Vec<Option<usize>> = (0..4)
+                        .map(|c| h.iter().position(|x| *x == plane_col(k, c)))
+                        .collect();
+                    match found.iter().flatten().count() {
+                        0 => {}
+                        4 => pcols.push([0, 1, 2, 3].map(|c| found[c].expect("present"))),
+                        _ => {
+                            let miss = (0..4).find(|&c| found[c].is_none()).expect("one missing");
+                            return Err(line_err(
+                                &src_h,
+                                1,
+                                &plane_col(k, miss),
+                                "column missing from the header (a plane needs all four)",
+                            ));
+                        }
+                    }
+                }
+                Ok((cols, pcols))
             });
-            let cols = match cols {
+            let (cols, pcols) = match cols {
                 Ok(c) => c,
                 Err(e) => return Box::new(std::iter::once(Err(e))),
             };
@@ -234,7 +336,29 @@ pub fn read_vectors<'a, R: BufRead + Send + 'a>(
                         line_err(src, line, CSV_FIELDS[k], format!("`{s}` is not a number"))
                     })?;
                 }
-                build(src, line, tag, &f)
+                let mut planes = vec![];
+                for (k, pc) in pcols.iter().enumerate() {
+                    let cells: Vec<&str> = pc.iter().map(|&i| rec.get(i).unwrap_or("")).collect();
+                    if cells.iter().all(|c| c.is_empty()) {
+                        continue;
+                    }
+                    let mut v = [0.0; 4];
+                    for c in 0..4 {
+                        v[c] = parse_num(cells[c]).ok_or_else(|| {
+                            line_err(
+                                src,
+                                line,
+                                &plane_col(k, c),
+                                format!("`{}` is not a number", cells[c]),
+                            )
+                        })?;
+                    }
+                    planes.push(Plane {
+                        n: DVec3::new(v[0], v[1], v[2]),
+                        w: v[3],
+                    });
+                }
+                build(src, line, tag, &f, planes)
             }))
         }
     }
@@ -295,21 +419,36 @@ pub fn write_vector<W: Write>(w: &mut W, fmt: VecFormat, v: &Vector) -> std::io:
             let a = |p: DVec3| format!("[{:?},{:?},{:?}]", p.x, p.y, p.z);
             writeln!(
                 w,
-                "{{\"tag\":{},\"origin\":{},\"dir\":{},\"t_min\":{},\"t_max\":{},\"box_min\":{},\"box_max\":{}}}",
+                "{{\"tag\":{},\"origin\":{},\"dir\":{},\"t_min\":{},\"t_max\":{},\"box_min\":{},\"box_max\":{}{}}}",
                 v.tag,
                 a(r.origin),
                 a(r.dir),
                 num_text(r.t_min, true),
                 num_text(r.t_max, true),
                 a(b.min),
-                a(b.max)
+                a(b.max),
+                if v.planes.is_empty() {
+                    String::new()
+                } else {
+                    let ps: Vec<String> = v
+                        .planes
+                        .iter()
+                        .map(|p| format!("[{:?},{:?},{:?},{:?}]", p.n.x, p.n.y, p.n.z, p.w))
+                        .collect();
+                    format!(",\"planes\":[{}]", ps.join(","))
+                }
             )
         }
         VecFormat::Csv => {
             let a = |p: DVec3| format!("{:?},{:?},{:?}", p.x, p.y, p.z);
+            let ps: String = v
+                .planes
+                .iter()
+                .map(|p| format!(",{},{:?}", a(p.n), p.w))
+                .collect();
             writeln!(
                 w,
-                "{},{},{},{},{},{},{}",
+                "{},{},{},{},{},{},{}{ps}",
                 v.tag,
                 a(r.origin),
                 a(r.dir),
@@ -322,9 +461,18 @@ pub fn write_vector<W: Write>(w: &mut W, fmt: VecFormat, v: &Vector) -> std::io:
     }
 }
 
-/// The CSV header of vector files.
+/// The CSV header of vector files (no planes).
 pub fn csv_vector_header() -> String {
-    CSV_FIELDS.join(",")
+    csv_vector_header_with_planes(0)
+}
+
+/// The CSV header of vector files with the columns of `k` planes (every row then carries `k` planes).
+pub fn csv_vector_header_with_planes(k: usize) -> String {
+    let mut cols: Vec<String> = CSV_FIELDS.iter().map(|c| c.to_string()).collect();
+    for p in 0..k {
+        cols.extend((0..4).map(|c| plane_col(p, c)));
+    }
+    cols.join(",")
 }
 
 #[cfg(test)]
@@ -341,16 +489,70 @@ mod tests {
             tag: 9,
             ray: Ray::new(DVec3::new(0.1, -2.0, 3.0), DVec3::Z, 0.0, f64::INFINITY).unwrap(),
             bx: Aabb::new(DVec3::splat(-1.0), DVec3::ONE).unwrap(),
+            planes: vec![],
         };
-        for fmt in [VecFormat::JsonLines, VecFormat::Csv] {
-            let mut buf = Vec::new();
-            if fmt == VecFormat::Csv {
-                writeln!(buf, "{}", csv_vector_header()).unwrap();
+        let with_planes = Vector {
+            planes: vec![
+                Plane {
+                    n: DVec3::new(1.0, -2.0, 0.0),
+                    w: 0.1,
+                },
+                Plane {
+                    n: DVec3::new(0.0, 0.5, 0.25),
+                    w: -0.3,
+                },
+            ],
+            ..v.clone()
+        };
+        for (v, k) in [(v, 0), (with_planes, 2)] {
+            for fmt in [VecFormat::JsonLines, VecFormat::Csv] {
+                let mut buf = Vec::new();
+                if fmt == VecFormat::Csv {
+                    writeln!(buf, "{}", csv_vector_header_with_planes(k)).unwrap();
+                }
+                write_vector(&mut buf, fmt, &v).unwrap();
+                let got = read(fmt, std::str::from_utf8(&buf).unwrap());
+                assert_eq!(got, vec![Ok(v.clone())], "{fmt:?}");
             }
-            write_vector(&mut buf, fmt, &v).unwrap();
-            let got = read(fmt, std::str::from_utf8(&buf).unwrap());
-            assert_eq!(got, vec![Ok(v)], "{fmt:?}");
         }
+    }
+
+    #[test]
+    fn bad_planes_are_named() {
+        let base = "\"origin\":[0,0,-5],\"dir\":[0,0,1],\"box_min\":[0,0,0],\"box_max\":[1,1,1]";
+        let json = |planes: &str| format!("{{{base},\"planes\":{planes}}}\n");
+        for (planes, want) in [
+            ("[[0,0,0,1]]", "planes[0] normal"),
+            ("[[1,0,0,\"inf\"]]", "planes[0] offset"),
+            ("[[1,0,0]]", "planes[0]"),
+            ("[[1,0,0,0],[1,\"x\",0,0]]", "planes[1][1]"),
+            ("3", "planes"),
+        ] {
+            let e = read(VecFormat::JsonLines, &json(planes))[0]
+                .clone()
+                .unwrap_err()
+                .to_string();
+            assert!(e.contains("test:1") && e.contains(want), "{planes}: {e}");
+        }
+        let nine = vec!["[1,0,0,0]"; 9].join(",");
+        let e = read(VecFormat::JsonLines, &json(&format!("[{nine}]")))[0]
+            .clone()
+            .unwrap_err()
+            .to_string();
+        assert!(e.contains("at most 8"), "{e}");
+        // CSV: a plane needs all four columns; a row may leave a plane's cells empty.
+        let h = format!("{},p0_nx,p0_ny,p0_nz", csv_vector_header());
+        let e = read(VecFormat::Csv, &format!("{h}\n"))[0]
+            .clone()
+            .unwrap_err()
+            .to_string();
+        assert!(e.contains("p0_w"), "{e}");
+        let h = csv_vector_header_with_planes(1);
+        let rows = format!("{h}\n1,0,0,-5,0,0,1,0,inf,0,0,0,1,1,1,,,,\n2,0,0,-5,0,0,1,0,inf,0,0,0,1,1,1,1,0,nan,0\n");
+        let got = read(VecFormat::Csv, &rows);
+        assert_eq!(got[0].as_ref().unwrap().planes, vec![]);
+        let e = got[1].clone().unwrap_err().to_string();
+        assert!(e.contains("test:3") && e.contains("planes[0] normal"), "{e}");
     }
 
     #[test]

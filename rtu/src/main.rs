@@ -55,6 +55,11 @@ enum Cmd {
         /// engines take the instantiated ones (fixed presets; e8m23, e8m15, e8m7, e5m10, e6m5).
         #[arg(long, default_value = "b16")]
         format: String,
+        /// Run the chained slab + cull-plane tester with this many planes per node (0 to 8; the rtl and
+        /// verilator engines take 1 to 8 with b8, b12, b16 and 1, 2, 4 with fp16, bf16, fp32); each
+        /// vector's planes (`planes` in JSON, `p0_nx..p7_w` in CSV) are fitted outward into the format.
+        #[arg(long)]
+        planes: Option<usize>,
         /// Fixed formats: scene bounds `x0,y0,z0,x1,y1,z1` for the grid; by default the bounds of the file's
         /// origins and boxes.
         #[arg(long)]
@@ -179,6 +184,7 @@ fn main() -> ExitCode {
             output,
             engine,
             format,
+            planes,
             bounds,
             vcd,
         } => run_vectors::run(
@@ -186,6 +192,7 @@ fn main() -> ExitCode {
             output.as_deref(),
             engine,
             &format,
+            planes,
             bounds.as_deref(),
             vcd.as_deref(),
             &cli.out,

@@ -5,13 +5,18 @@ use golden::fixed::{FixFormat, GridMap};
 use golden::float::FloatFormat;
 use golden::gen::{GenKind, SlabGen};
 use golden::slab_float::{quantize_box, quantize_ray};
+use golden::plane_fix::CullFixFormat;
+use golden::plane_float::CullFloatFormat;
 use golden::vectors::{
     csv_vector_header, read_vectors, write_header, write_result, write_vector, VecFormat, Vector,
+    MAX_VECTOR_PLANES,
 };
 use std::io::{BufRead, BufReader, BufWriter, Read, Write};
 use std::path::Path;
 use std::sync::{Arc, Mutex};
-use tb::engine::{run_fix, run_float, Engine};
+use tb::engine::{run_cull_fix, run_cull_float, run_fix, run_float, Engine};
+use tb::plane_float_tb::{float_vector, CullFloatCtx};
+use tb::plane_tb::{fix_vector, CullFixCtx};
 use tb::slab_tb::SlabCtx;
 
 fn parse_bounds(s: &str) -> Result<(DVec3, DVec3), String> {
@@ -64,13 +69,16 @@ fn vectors_of(
 }
 
 /// Runs a vector file through `engine` on the fixed (`b8`, `b12`, `b16`, `G,I,FI,T,FT`) or float (`fp32`,
-/// `fp16`, `bf16`, `eXmY`) tester of `format`, and writes results in the input's format.
+/// `fp16`, `bf16`, `eXmY`) tester of `format` — the slab tester, or with `planes = Some(K)` the chained
+/// slab + cull-plane tester with `K` planes, each vector's planes fitted outward into the format — and
+/// writes results in the input's format.
 #[allow(clippy::too_many_arguments)]
 pub fn run(
     input: &Path,
     output: Option<&Path>,
     engine: Engine,
     format: &str,
+    planes: Option<usize>,
     bounds: Option<&str>,
     vcd: Option<&Path>,
     out: &Path,
@@ -82,7 +90,7 @@ pub fn run(
     };
     let src = input.display().to_string();
     let bytes = Arc::new(slurp(input)?);
-    let mut w: Box<dyn Write> = match output {
+    let mut w: Box<dyn Write + Send> = match output {
         Some(p) => Box::new(BufWriter::new(
             std::fs::File::create(p).map_err(|e| format!("{}: {e}", p.display()))?,
         )),
@@ -93,9 +101,34 @@ pub fn run(
     let vdir = out.join("verilator");
     let lower = format.to_ascii_lowercase();
     let looks_float = lower.starts_with('e') || lower.starts_with("fp") || lower.starts_with("bf");
-    let (n, what) = if looks_float {
+    let k = planes.unwrap_or(0);
+    if k > MAX_VECTOR_PLANES {
+        return Err(format!("--planes {k}: at most {MAX_VECTOR_PLANES}"));
+    }
+    let too_many = move |v: &Vector| -> Result<(), golden::Error> {
+        if v.planes.len() > k {
+            return Err(golden::Error::Io(format!(
+                "{} planes, but the tester has {k} (--planes)",
+                v.planes.len()
+            )));
+        }
+        Ok(())
+    };
+    let (n, what) = if looks_float && planes.is_some() {
+        let f = FloatFormat::parse(format).map_err(|e| e.to_string())?;
+        let ctx = CullFloatCtx::new(CullFloatFormat::over(f), k);
+        let tests = quantized(bytes, vfmt, src, failure.clone(), move |v| {
+            too_many(v)?;
+            float_vector(&ctx.cf, v)
+        });
+        let n = run_cull_float(engine, ctx, tests, &vdir, vcd, |tag, r, o| {
+            emit(&mut w, vfmt, tag, ctx.world(r, &o))
+        })?;
+        (n, format!("float format {}, {k} planes", f.name()))
+    } else if looks_float {
         let f = FloatFormat::parse(format).map_err(|e| e.to_string())?;
         let tests = quantized(bytes, vfmt, src, failure.clone(), move |v| {
+            too_many(v)?;
             Ok((quantize_ray(&f, &v.ray)?, quantize_box(&f, &v.bx)?))
         });
         let n = run_float(engine, f, tests, &vdir, vcd, |tag, r, o| {
@@ -110,16 +143,31 @@ pub fn run(
             None => file_bounds(bytes.clone(), vfmt, &src)?,
         };
         let map = GridMap::for_bounds(fmt, lo, hi).map_err(|e| e.to_string())?;
-        let tests = quantized(bytes, vfmt, src, failure.clone(), move |v| {
-            Ok((map.quantize_ray(&v.ray)?, map.quantize_box(&v.bx)?))
-        });
-        let n = run_fix(engine, fmt, tests, &vdir, vcd, |tag, r, o| {
-            emit(&mut w, vfmt, tag, fmt.world(r, &o))
-        })?;
+        let n = if planes.is_some() {
+            let ctx = CullFixCtx {
+                cf: CullFixFormat::over(fmt),
+                k,
+            };
+            let tests = quantized(bytes, vfmt, src, failure.clone(), move |v| {
+                too_many(v)?;
+                fix_vector(&ctx.cf, &map, v)
+            });
+            run_cull_fix(engine, ctx, tests, &vdir, vcd, |tag, r, o| {
+                emit(&mut w, vfmt, tag, ctx.world(r, &o))
+            })?
+        } else {
+            let tests = quantized(bytes, vfmt, src, failure.clone(), move |v| {
+                too_many(v)?;
+                Ok((map.quantize_ray(&v.ray)?, map.quantize_box(&v.bx)?))
+            });
+            run_fix(engine, fmt, tests, &vdir, vcd, |tag, r, o| {
+                emit(&mut w, vfmt, tag, fmt.world(r, &o))
+            })?
+        };
         (
             n,
             format!(
-                "format {}, grid cell {}",
+                "format {}, grid cell {}, {k} planes",
                 fmt.name(),
                 golden::fixed::ldexp(1.0, map.k)
             ),
@@ -134,7 +182,7 @@ pub fn run(
 }
 
 fn emit(
-    w: &mut Box<dyn Write>,
+    w: &mut Box<dyn Write + Send>,
     vfmt: VecFormat,
     tag: u64,
     (hit, en, ex): (bool, f64, f64),
@@ -211,6 +259,7 @@ pub fn gen(kind: GenKind, n: u64, seed: u64, output: Option<&Path>) -> Result<()
                 tag: tag as u64,
                 ray,
                 bx,
+                planes: vec![],
             },
         )
         .map_err(|e| e.to_string())?;

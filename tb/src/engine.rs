@@ -1,12 +1,19 @@
-//! One streaming interface over the three executable forms of a slab tester, for either datapath: the
-//! bit-accurate model, the rust-hdl simulation and the exported Verilog in Verilator. Results come back in
-//! input order.
+//! One streaming interface over the three executable forms of a slab tester or a chained slab +
+//! cull-plane tester, for either datapath: the bit-accurate model, the rust-hdl simulation and the exported
+//! Verilog in Verilator. Results come back in input order.
 
 use crate::dut::PipelinedDut;
+use crate::plane_float_tb::CullFloatCtx;
+use crate::plane_tb::CullFixCtx;
 use crate::rtl_sim::SlabRtl;
 use crate::slab_tb::{in_word, SlabCtx};
 use golden::fixed::FixFormat;
 use golden::float::FloatFormat;
+use golden::plane_fix::{CullFixFormat, NodeFixRay, PlaneFixOut};
+use golden::plane_float::{CullFloatFormat, NodeFloatRay};
+use golden::slab_float::SlabFloatOut;
+use rtl::plane_fix::PlaneFixIo;
+use rtl::plane_float::PlaneFloatIo;
 use rtl::SlabIo;
 use std::collections::VecDeque;
 use std::path::Path;
@@ -107,6 +114,143 @@ where
             sink,
         )
     })?
+}
+
+/// Runs `tests` on the fixed chained slab + cull-plane tester of `ctx` (any format and `K` for the
+/// model; the preset cull formats over b8, b12, b16 with `1 <= K <= 8` for rtl and verilator).
+pub fn run_cull_fix<K, It, F>(
+    engine: Engine,
+    ctx: CullFixCtx,
+    tests: It,
+    verilator_dir: &Path,
+    vcd: Option<&Path>,
+    sink: F,
+) -> Result<u64, String>
+where
+    K: Send + 'static,
+    It: Iterator<Item = Keyed<K, CullFixCtx>> + Send + 'static,
+    F: FnMut(K, &NodeFixRay, PlaneFixOut) -> Result<(), String>,
+{
+    if engine == Engine::Model {
+        return run_model(ctx, tests, vcd, sink);
+    }
+    let a = (engine, ctx, tests, verilator_dir, vcd, sink);
+    match ctx.k {
+        1 => cull_fix_k::<1, _, _, _>(a),
+        2 => cull_fix_k::<2, _, _, _>(a),
+        3 => cull_fix_k::<3, _, _, _>(a),
+        4 => cull_fix_k::<4, _, _, _>(a),
+        5 => cull_fix_k::<5, _, _, _>(a),
+        6 => cull_fix_k::<6, _, _, _>(a),
+        7 => cull_fix_k::<7, _, _, _>(a),
+        8 => cull_fix_k::<8, _, _, _>(a),
+        k => Err(format!(
+            "{k} planes: the cull-plane RTL takes 1 to 8 (the model takes 0 to 8)"
+        )),
+    }
+}
+
+/// The arguments of [`run_cull_fix`], passed on to the block of the right type.
+type CullFixArgs<'a, It, F> = (Engine, CullFixCtx, It, &'a Path, Option<&'a Path>, F);
+
+fn cull_fix_k<const P: usize, K, It, F>(a: CullFixArgs<'_, It, F>) -> Result<u64, String>
+where
+    K: Send + 'static,
+    It: Iterator<Item = Keyed<K, CullFixCtx>> + Send + 'static,
+    F: FnMut(K, &NodeFixRay, PlaneFixOut) -> Result<(), String>,
+{
+    let base = a.1.cf.base;
+    if a.1.cf != CullFixFormat::over(base) {
+        return Err(format!(
+            "the rtl and verilator engines take the preset cull formats, not {}",
+            a.1.cf.name()
+        ));
+    }
+    if base == FixFormat::b8() {
+        cull_fix_block::<rtl::PlaneFixB8<P>, _, _, _>(a)
+    } else if base == FixFormat::b12() {
+        cull_fix_block::<rtl::PlaneFixB12<P>, _, _, _>(a)
+    } else if base == FixFormat::b16() {
+        cull_fix_block::<rtl::PlaneFixB16<P>, _, _, _>(a)
+    } else {
+        Err(format!(
+            "no PlaneFix instance for {}: the rtl and verilator engines take b8, b12, b16",
+            base.name()
+        ))
+    }
+}
+
+fn cull_fix_block<S: PlaneFixIo, K, It, F>(
+    (engine, ctx, tests, verilator_dir, vcd, sink): CullFixArgs<'_, It, F>,
+) -> Result<u64, String>
+where
+    K: Send + 'static,
+    It: Iterator<Item = Keyed<K, CullFixCtx>> + Send + 'static,
+    F: FnMut(K, &NodeFixRay, PlaneFixOut) -> Result<(), String>,
+{
+    let module = ctx.name();
+    run_block(
+        engine,
+        ctx,
+        || S::for_format(&ctx.cf),
+        || Ok(rtl::export::verilog_named(&mut S::for_format(&ctx.cf), &module)),
+        &module,
+        tests,
+        verilator_dir,
+        vcd,
+        sink,
+    )
+}
+
+/// Runs `tests` on the float chained slab + cull-plane tester of `ctx` (any format and `K` for the
+/// model; the instantiated ones for rtl and verilator: e5m10, e8m7, e8m23 with 1, 2 or 4 planes).
+/// Runs on a thread with a large stack (a `PlaneFloat` block is a large value).
+pub fn run_cull_float<K, It, F>(
+    engine: Engine,
+    ctx: CullFloatCtx,
+    tests: It,
+    verilator_dir: &Path,
+    vcd: Option<&Path>,
+    sink: F,
+) -> Result<u64, String>
+where
+    K: Send + 'static,
+    It: Iterator<Item = Keyed<K, CullFloatCtx>> + Send + 'static,
+    F: FnMut(K, &NodeFloatRay, SlabFloatOut) -> Result<(), String> + Send,
+{
+    if engine == Engine::Model {
+        return run_model(ctx, tests, vcd, sink);
+    }
+    if ctx.cf != CullFloatFormat::over(ctx.cf.f) {
+        return Err(format!(
+            "the rtl and verilator engines take the default table (R = min(M, 8)), not {}",
+            ctx.cf.name()
+        ));
+    }
+    let module = rtl::plane_float_export::plane_float_module(&ctx.cf, ctx.k);
+    let f = ctx.cf.f;
+    std::thread::scope(|s| {
+        std::thread::Builder::new()
+            .stack_size(512 << 20)
+            .spawn_scoped(s, move || {
+                rtl::with_plane_float!(&f, ctx.k, P, {
+                    run_block(
+                        engine,
+                        ctx,
+                        P::make,
+                        || rtl::plane_float_export::plane_float_verilog(&f, ctx.k),
+                        &module,
+                        tests,
+                        verilator_dir,
+                        vcd,
+                        sink,
+                    )
+                })?
+            })
+            .map_err(|e| format!("cannot start the simulation thread: {e}"))?
+            .join()
+            .unwrap_or_else(|e| std::panic::resume_unwind(e))
+    })
 }
 
 fn run_model<C: SlabCtx, K, It, F>(

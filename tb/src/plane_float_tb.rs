@@ -111,6 +111,28 @@ pub fn raw_node(cf: &CullFloatFormat, k: usize, rng: &mut Pcg64) -> (NodeFloatRa
     (r, n)
 }
 
+/// A user's vector quantised for the float tester of `cf` (as [`crate::plane_tb::fix_vector`]).
+pub fn float_vector(
+    cf: &CullFloatFormat,
+    v: &golden::vectors::Vector,
+) -> Result<(NodeFloatRay, FloatNode), golden::Error> {
+    let r = NodeFloatRay {
+        ray: golden::slab_float::quantize_ray(&cf.f, &v.ray)?,
+        dir: golden::plane_float::quantize_dir(cf, &v.ray)?,
+    };
+    let mut node = FloatNode {
+        b: golden::slab_float::quantize_box(&cf.f, &v.bx)?,
+        ..Default::default()
+    };
+    if !v.bx.is_empty() {
+        for (i, p) in v.planes.iter().enumerate() {
+            let pts = golden::plane::region_points(&v.bx, p);
+            node.planes[i] = golden::plane_float::fit_plane(cf, &node.b, p.n, &pts)?;
+        }
+    }
+    Ok((r, node))
+}
+
 /// An endless stream of node tests for `ctx`: cases of [`CullGen`] (half adversarial) quantised by
 /// [`float_case`], and raw patterns (a raw one every
 /// `raw_every` tests, none when 0), and a bubble every `bubble_every` cycles (none when 0).

@@ -149,6 +149,32 @@ pub fn raw_node_fix(cf: &CullFixFormat, rng: &mut Pcg64) -> (NodeFixRay, FixNode
     (r, node)
 }
 
+/// A user's vector (a world ray, box and planes) quantised for the fixed tester of `cf` on `map`: each
+/// plane fitted outward to the part of the box on its non-empty side
+/// ([`golden::plane::region_points`]), so the stored node encloses the world node (slots beyond the
+/// vector's planes stay unused). An empty box keeps no planes (it misses anyway).
+pub fn fix_vector(
+    cf: &CullFixFormat,
+    map: &GridMap,
+    v: &golden::vectors::Vector,
+) -> Result<(NodeFixRay, FixNode), Error> {
+    let r = NodeFixRay {
+        ray: map.quantize_ray(&v.ray)?,
+        dir: plane_fix::quantize_dir(cf, &v.ray)?,
+    };
+    let mut node = FixNode {
+        b: map.quantize_box(&v.bx)?,
+        ..Default::default()
+    };
+    if !v.bx.is_empty() {
+        for (i, p) in v.planes.iter().enumerate() {
+            let pts = golden::plane::region_points(&v.bx, p);
+            node.planes[i] = plane_fix::fit_plane(cf, map, &node.b, p.n, &pts)?;
+        }
+    }
+    Ok((r, node))
+}
+
 /// A stream of `n` node tests for the pipeline: cases from [`CullGen`] (mixed uniform and adversarial),
 /// one in eight replaced by a raw vector, and (when `bubbles`) about one cycle in eight a bubble.
 pub fn node_fix_vectors(
