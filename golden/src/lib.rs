@@ -2,16 +2,24 @@
 //!
 //! Every tester has three models here (see `shared/design/ARCHITECTURE.md`):
 //!
-//! | model | module | role |
-//! | --- | --- | --- |
-//! | float reference (f64) | [`slab_ref`] | meaning of the test, accuracy yardstick |
-//! | exact oracle (rationals) | [`exact`] | the truth |
-//! | bit-accurate fixed-point model | [`slab_fix`] | native stand-in for the RTL, bit for bit |
+//! | model | slab tester | cull-plane tester | bundle testers | role |
+//! | --- | --- | --- | --- | --- |
+//! | float reference (f64) | [`slab_ref`] | [`plane`] | [`bundle`] | meaning of the test, accuracy yardstick |
+//! | exact oracle (rationals) | [`exact`] | [`plane`] | [`bundle`] | the truth |
+//! | bit-accurate fixed point | [`slab_fix`] | [`plane_fix`] | [`bundle_fix`] | native stand-in for the RTL, bit for bit |
+//! | bit-accurate float | [`slab_float`] | [`plane_float`] | [`bundle_float`] | the same |
+//!
+//! Scenes, BVH, plane generation and traversal for the scene measurements: [`scene`], [`bvh`],
+//! [`planegen`], [`traverse`], [`tri`]; case generators [`gen`], [`cull_gen`], [`bundle_gen`].
 //!
 //! The number formats and the outward quantisation that feeds the bit-accurate models live in [`fixed`];
 //! random and adversarial vector generators in [`gen`]; reading and writing user vector files in
 //! [`vectors`].
 
+pub mod bundle;
+pub mod bundle_fix;
+pub mod bundle_float;
+pub mod bundle_gen;
 pub mod check;
 pub mod cull_gen;
 pub mod error;

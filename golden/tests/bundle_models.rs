@@ -1,0 +1,446 @@
+//! The bundle models against the truth: the single-ray edge test against the slab oracle, the exact bundle
+//! oracle against its rays, and both datapaths (fixed-point presets, float formats) against the exact
+//! oracle and the exact per-ray results, on random and adversarial bundles. Each test prints its counts
+//! (run with `--nocapture`).
+
+use glam::DVec3;
+use golden::bundle::{
+    conditions_hold, decide_exact, exact_box, exact_bundle, ray_hits_exact, ray_hits_ref, Bundle,
+    BundleOf, ExactArith, Test,
+};
+use golden::bundle_fix::{self, BundleFixFormat};
+use golden::bundle_float;
+use golden::bundle_gen::{BundleCase, BundleGen, BundleKind};
+use golden::exact::slab_exact;
+use golden::fixed::GridMap;
+use golden::float::FloatFormat;
+use golden::gen::{GenKind, SlabGen};
+use golden::geom::{Aabb, Ray};
+use golden::slab_ref::slab_ref;
+use std::time::Instant;
+
+/// Bundles per datapath campaign (each against the exact per-ray results and the exact oracle).
+const BUNDLES: usize = 100_000;
+
+fn scene() -> (DVec3, DVec3) {
+    (DVec3::splat(-100.0), DVec3::splat(100.0))
+}
+
+fn campaign(seed: u64) -> impl Iterator<Item = BundleCase> {
+    let (lo, hi) = scene();
+    BundleGen::new(seed, lo, hi, 0.6)
+}
+
+/// The exact per-ray results of a case's listed rays.
+fn truth(c: &BundleCase) -> Vec<bool> {
+    c.rays
+        .iter()
+        .map(|r| slab_exact(r, &c.bounds).hit)
+        .collect()
+}
+
+/// What a datapath said of a bundle, checked against the exact oracle's answers and the listed rays.
+/// Returns a description of the first broken promise.
+fn judge(
+    c: &BundleCase,
+    truth: &[bool],
+    oracle: (bool, bool),
+    got: (bool, bool),
+) -> Result<(), String> {
+    let (all_hit, all_miss) = got;
+    let ctx = || format!("{:?} bundle {:?} box {:?}", c.kind, c.bundle, c.bounds);
+    if all_hit && all_miss {
+        return Err(format!("both all-hit and all-miss: {}", ctx()));
+    }
+    let first = |want: bool| truth.iter().position(|&h| h == want).map(|i| c.rays[i]);
+    match (all_hit, all_miss) {
+        (true, _) => {
+            if let Some(r) = first(false) {
+                return Err(format!("false all-hit: ray {r:?} misses; {}", ctx()));
+            }
+        }
+        (_, true) => {
+            if let Some(r) = first(true) {
+                return Err(format!("false all-miss: ray {r:?} hits; {}", ctx()));
+            }
+        }
+        _ => {}
+    }
+    if all_hit && !oracle.0 {
+        return Err(format!("all-hit where the exact oracle is not: {}", ctx()));
+    }
+    if all_miss && !oracle.1 {
+        return Err(format!("all-miss where the exact oracle is not: {}", ctx()));
+    }
+    Ok(())
+}
+
+/// Counts of one campaign.
+#[derive(Default, Debug)]
+struct Tally {
+    bundles: usize,
+    rays: usize,
+    all_hit: usize,
+    all_miss: usize,
+    oracle_hit: usize,
+    oracle_miss: usize,
+    ideal_hit: usize,
+    ideal_miss: usize,
+    straddling: usize,
+    /// Uniform (non-adversarial) bundles: count, all-hit, oracle all-hit, all-miss, oracle all-miss.
+    uniform: [usize; 5],
+    violations: Vec<String>,
+}
+
+impl Tally {
+    fn add(&mut self, c: &BundleCase, t: &[bool], oracle: (bool, bool), got: (bool, bool)) {
+        self.bundles += 1;
+        self.rays += t.len();
+        self.all_hit += usize::from(got.0);
+        self.all_miss += usize::from(got.1);
+        self.oracle_hit += usize::from(oracle.0);
+        self.oracle_miss += usize::from(oracle.1);
+        self.ideal_hit += usize::from(t.iter().all(|&h| h));
+        self.ideal_miss += usize::from(t.iter().all(|&h| !h));
+        self.straddling += usize::from(c.bundle.straddles());
+        if c.kind == BundleKind::Uniform {
+            for (n, v) in self
+                .uniform
+                .iter_mut()
+                .zip([true, got.0, oracle.0, got.1, oracle.1])
+            {
+                *n += usize::from(v);
+            }
+        }
+        if let Err(e) = judge(c, t, oracle, got) {
+            self.violations.push(e);
+        }
+    }
+
+    fn report(&self, name: &str, secs: f64) {
+        let pct = |n: usize| 100.0 * n as f64 / self.bundles.max(1) as f64;
+        println!(
+            "{name}: {} bundles ({} straddling), {} rays, {:.1} s; all-hit {:.1}% (oracle {:.1}%, \
+             listed rays {:.1}%), all-miss {:.1}% (oracle {:.1}%, listed rays {:.1}%), {} violations",
+            self.bundles,
+            self.straddling,
+            self.rays,
+            secs,
+            pct(self.all_hit),
+            pct(self.oracle_hit),
+            pct(self.ideal_hit),
+            pct(self.all_miss),
+            pct(self.oracle_miss),
+            pct(self.ideal_miss),
+            self.violations.len()
+        );
+        let u = &self.uniform;
+        let upct = |n: usize| 100.0 * n as f64 / u[0].max(1) as f64;
+        println!(
+            "{name}: uniform bundles only ({}): all-hit {:.1}% (oracle {:.1}%), all-miss {:.1}% (oracle {:.1}%)",
+            u[0],
+            upct(u[1]),
+            upct(u[2]),
+            upct(u[3]),
+            upct(u[4])
+        );
+    }
+
+    fn assert_clean(&self, name: &str) {
+        assert!(
+            self.violations.is_empty(),
+            "{name}: {} violations, first: {}",
+            self.violations.len(),
+            self.violations[0]
+        );
+        // Not vacuous: both answers are given on a real share of the bundles.
+        let min = self.bundles / 20;
+        assert!(
+            self.all_hit > min && self.all_miss > min,
+            "{name}: {self:?}"
+        );
+    }
+}
+
+#[test]
+fn bundle_single_ray_edge_test_equals_the_slab_oracle() {
+    let (lo, hi) = scene();
+    let n = 200_000;
+    let (mut hits, mut edge_wrong, mut slab_wrong) = (0, 0, 0);
+    let start = Instant::now();
+    for (ray, b) in SlabGen::new(GenKind::Mixed, lo, hi, 1.0 / 64.0, 11).take(n) {
+        let truth = slab_exact(&ray, &b).hit;
+        hits += usize::from(truth);
+        assert_eq!(
+            ray_hits_exact(&ray, &b).unwrap(),
+            truth,
+            "edge test disagrees with the slab oracle: {ray:?} {b:?}"
+        );
+        edge_wrong += usize::from(ray_hits_ref(&ray, &b).unwrap() != truth);
+        slab_wrong += usize::from(slab_ref(&ray, &b).hit != truth);
+    }
+    println!(
+        "single ray: {n} rays ({hits} hits), exact edge test == slab oracle on all; wrong in f64 (round to \
+         nearest): edge test {edge_wrong}, slab {slab_wrong}; {:.1} s",
+        start.elapsed().as_secs_f64()
+    );
+    assert!(hits > n / 10 && hits < n * 9 / 10);
+    // Away from grazing configurations the f64 reference is the truth.
+    for (ray, b) in SlabGen::new(GenKind::Uniform, lo, hi, 1.0 / 64.0, 12).take(n / 4) {
+        assert_eq!(
+            ray_hits_ref(&ray, &b).unwrap(),
+            slab_exact(&ray, &b).hit,
+            "{ray:?} {b:?}"
+        );
+    }
+}
+
+#[test]
+fn bundle_f64_reference_is_exact_when_every_product_is() {
+    // Small integers: every difference and product is exact in f64, so the reference is the oracle.
+    let (lo, hi) = (DVec3::splat(-16.0), DVec3::splat(16.0));
+    let mut g = BundleGen::new(21, lo, hi, 0.7);
+    let round = |v: f64| v.round();
+    for _ in 0..20_000 {
+        let c = g.next_case();
+        let b = c.bundle;
+        let b = Bundle {
+            o_lo: b.o_lo.map(f64::floor),
+            o_hi: b.o_hi.map(f64::ceil),
+            d_lo: b.d_lo.map(|d| (d * 4.0).floor()),
+            d_hi: b.d_hi.map(|d| (d * 4.0).ceil()),
+            t_lo: round(b.t_lo).min(64.0),
+            t_hi: if b.t_hi.is_finite() {
+                round(b.t_hi).max(round(b.t_lo)).min(64.0)
+            } else {
+                b.t_hi
+            },
+        };
+        let bx = Aabb {
+            min: c.bounds.min.floor(),
+            max: c.bounds.max.ceil(),
+        };
+        assert_eq!(
+            golden::bundle::decide_ref(&b, &bx).unwrap(),
+            decide_exact(&b, &bx).unwrap(),
+            "{b:?} {bx:?}"
+        );
+    }
+}
+
+/// The 2^7 corner rays of a bundle (each origin and direction component and t_max at an end).
+fn corner_rays(b: &Bundle) -> Vec<Ray> {
+    (0..128u32)
+        .map(|k| {
+            let bit = |i: u32| k >> i & 1 == 1;
+            let pick = |lo: f64, hi: f64, i: u32| if bit(i) { hi } else { lo };
+            Ray {
+                origin: DVec3::from_array(std::array::from_fn(|a| {
+                    pick(b.o_lo[a], b.o_hi[a], a as u32)
+                })),
+                dir: DVec3::from_array(std::array::from_fn(|a| {
+                    pick(b.d_lo[a], b.d_hi[a], 3 + a as u32)
+                })),
+                t_min: 0.0,
+                t_max: pick(b.t_lo, b.t_hi, 6),
+            }
+        })
+        .collect()
+}
+
+#[test]
+fn bundle_exact_oracle_is_sound_and_allhit_is_exact_without_straddling() {
+    let start = Instant::now();
+    let mut tally = Tally::default();
+    let (mut exact_checked, mut straddling_missed) = (0, 0);
+    for c in campaign(31).take(6_000) {
+        let corners = corner_rays(&c.bundle);
+        let corner_truth: Vec<bool> = corners
+            .iter()
+            .map(|r| slab_exact(r, &c.bounds).hit)
+            .collect();
+        let t = truth(&c);
+        let oracle = decide_exact(&c.bundle, &c.bounds).unwrap();
+        tally.add(&c, &t, oracle, oracle);
+        // Sound on the corners too (the listed rays are checked by the tally).
+        let every = corner_truth.iter().all(|&h| h);
+        assert!(!oracle.0 || every, "false all-hit on a corner ray: {c:?}");
+        assert!(
+            !oracle.1 || corner_truth.iter().all(|&h| !h),
+            "false all-miss on a corner ray: {c:?}"
+        );
+        // Exact: without a straddling axis, AllHit fails only when some corner ray misses.
+        if c.bundle.straddles() {
+            straddling_missed += usize::from(every && !oracle.0);
+        } else {
+            exact_checked += 1;
+            assert_eq!(
+                oracle.0, every,
+                "AllHit not exact on a non-straddling bundle: {c:?}"
+            );
+        }
+    }
+    tally.report("exact oracle", start.elapsed().as_secs_f64());
+    println!(
+        "exact oracle: AllHit == 'all 128 corner rays hit' on {exact_checked} non-straddling bundles; \
+         {straddling_missed} straddling bundles with every corner hitting were not decided"
+    );
+    tally.assert_clean("exact oracle");
+}
+
+#[test]
+fn bundle_one_ray_bundles_are_exact_on_the_fixed_datapath() {
+    let (lo, hi) = scene();
+    let start = Instant::now();
+    for bf in BundleFixFormat::presets() {
+        let map = GridMap::for_bounds(bf.base, lo, hi).unwrap();
+        let mut g = BundleGen::new(41, lo, hi, 1.0);
+        let (mut hits, n) = (0, 30_000);
+        for _ in 0..n {
+            let c = g.grid_one_ray(&map);
+            let hit = slab_exact(&c.rays[0], &c.bounds).hit;
+            hits += usize::from(hit);
+            let q = bundle_fix::quantize_bundle(&bf, &map, &c.bundle).unwrap();
+            let p = bundle_fix::quantize_box_pair(&map, &c.bounds).unwrap();
+            assert!(
+                q.o_lo == q.o_hi && q.d_lo == q.d_hi && q.t_lo == q.t_hi,
+                "not exact: {q:?} {c:?}"
+            );
+            assert_eq!(p.inner, p.outer);
+            let got = (
+                bundle_fix::all_hit_fix(&bf, &q, &p.inner),
+                bundle_fix::all_miss_fix(&bf, &q, &p.outer),
+            );
+            assert_eq!(got, (hit, !hit), "{} {c:?} {q:?}", bf.name());
+            assert_eq!(
+                decide_exact(&c.bundle, &c.bounds).unwrap(),
+                (hit, !hit),
+                "{c:?}"
+            );
+            assert_eq!(ray_hits_exact(&c.rays[0], &c.bounds).unwrap(), hit, "{c:?}");
+        }
+        println!("{}: {n} on-grid single rays ({hits} hits) exact", bf.name());
+        assert!(hits > n / 10 && hits < n * 9 / 10, "{hits} of {n}");
+    }
+    println!("one-ray exactness: {:.1} s", start.elapsed().as_secs_f64());
+}
+
+/// A named datapath: `(all_hit, all_miss)` of a case.
+type Datapath<'a> = (String, Box<dyn Fn(&BundleCase) -> (bool, bool) + 'a>);
+
+/// Runs datapaths over one campaign against the exact oracle and the listed rays, and checks each.
+fn run_datapaths(seed: u64, dps: &[Datapath]) {
+    let start = Instant::now();
+    let mut tallies: Vec<Tally> = dps.iter().map(|_| Tally::default()).collect();
+    for c in campaign(seed).take(BUNDLES) {
+        let t = truth(&c);
+        let oracle = decide_exact(&c.bundle, &c.bounds).unwrap();
+        for ((_, dp), tally) in dps.iter().zip(&mut tallies) {
+            tally.add(&c, &t, oracle, dp(&c));
+        }
+    }
+    let secs = start.elapsed().as_secs_f64();
+    for ((name, _), tally) in dps.iter().zip(&tallies) {
+        tally.report(name, secs);
+    }
+    for ((name, _), tally) in dps.iter().zip(&tallies) {
+        tally.assert_clean(name);
+    }
+}
+
+/// A datapath as a boxed closure with its name.
+fn datapath<'a>(name: String, dp: impl Fn(&BundleCase) -> (bool, bool) + 'a) -> Datapath<'a> {
+    (name, Box::new(dp))
+}
+
+#[test]
+fn bundle_fixed_datapath_is_conservative() {
+    let (lo, hi) = scene();
+    let dps: Vec<Datapath> = BundleFixFormat::presets()
+        .into_iter()
+        .map(|bf| {
+            let map = GridMap::for_bounds(bf.base, lo, hi).unwrap();
+            datapath(format!("fixed {}", bf.name()), move |c| {
+                bundle_fix::decide_fix(&bf, &map, &c.bundle, &c.bounds).unwrap()
+            })
+        })
+        .collect();
+    run_datapaths(51, &dps);
+}
+
+#[test]
+fn bundle_float_datapath_is_conservative() {
+    let dps: Vec<Datapath> = [FloatFormat::FP16, FloatFormat::BF16, FloatFormat::FP32]
+        .into_iter()
+        .map(|f| {
+            datapath(format!("float {}", f.name()), move |c| {
+                bundle_float::decide_float(&f, &c.bundle, &c.bounds).unwrap()
+            })
+        })
+        .collect();
+    run_datapaths(61, &dps);
+}
+
+#[test]
+fn bundle_fixed_datapath_equals_exact_arithmetic_on_its_own_inputs() {
+    let (lo, hi) = scene();
+    let bf = BundleFixFormat::presets()[0];
+    let map = GridMap::for_bounds(bf.base, lo, hi).unwrap();
+    for c in campaign(71).take(20_000) {
+        let q = bundle_fix::quantize_bundle(&bf, &map, &c.bundle).unwrap();
+        let p = bundle_fix::quantize_box_pair(&map, &c.bounds).unwrap();
+        let e = bundle_fix::exact_of_fix(&bf, &q);
+        for (test, bx) in [(Test::AllHit, &p.inner), (Test::AnyHit, &p.outer)] {
+            let (l, h) = bundle_fix::exact_of_fix_box(bx);
+            let fix = conditions_hold(&bundle_fix::FixArith(bf), &q, None, &bx.lo, &bx.hi, test);
+            assert_eq!(
+                fix,
+                conditions_hold(&ExactArith, &e, None, &l, &h, test),
+                "{test:?} {q:?} {bx:?}"
+            );
+        }
+    }
+}
+
+/// Runs a wrong variant until the per-ray truth catches it; returns how many bundles that took.
+fn caught_after(seed: u64, wrong: impl Fn(&BundleCase) -> (bool, bool)) -> Option<usize> {
+    campaign(seed)
+        .take(20_000)
+        .position(|c| judge(&c, &truth(&c), (true, true), wrong(&c)).is_err())
+}
+
+#[test]
+fn bundle_deliberately_wrong_variants_are_caught() {
+    let exact = |b: &Bundle, bx: &Aabb, test| {
+        let (l, h) = exact_box(bx);
+        conditions_hold(&ExactArith, &exact_bundle(b), None, &l, &h, test)
+    };
+    // AllHit with AnyHit's bounds (internal bound, enlarged box).
+    let swapped_hit = caught_after(81, |c| (exact(&c.bundle, &c.bounds, Test::AnyHit), false));
+    // AnyHit's verdict with AllHit's bounds.
+    let swapped_miss = caught_after(82, |c| (false, !exact(&c.bundle, &c.bounds, Test::AllHit)));
+    // A straddling axis treated as positive (the negative half of the bundle ignored).
+    let no_straddle = caught_after(83, |c| {
+        let mut b: BundleOf<f64, f64> = c.bundle;
+        for a in 0..3 {
+            b.d_lo[a] = b.d_lo[a].max(0.0);
+            b.d_hi[a] = b.d_hi[a].max(0.0);
+        }
+        (exact(&b, &c.bounds, Test::AllHit), false)
+    });
+    // The fixed datapath's AllHit on the outward-rounded box.
+    let (lo, hi) = scene();
+    let bf = BundleFixFormat::presets()[0];
+    let map = GridMap::for_bounds(bf.base, lo, hi).unwrap();
+    let outer_for_allhit = caught_after(84, |c| {
+        let q = bundle_fix::quantize_bundle(&bf, &map, &c.bundle).unwrap();
+        let p = bundle_fix::quantize_box_pair(&map, &c.bounds).unwrap();
+        (bundle_fix::all_hit_fix(&bf, &q, &p.outer), false)
+    });
+    println!(
+        "wrong variants caught after: swapped AllHit bounds {swapped_hit:?}, swapped AnyHit bounds \
+         {swapped_miss:?}, straddle ignored {no_straddle:?}, outer box for AllHit {outer_for_allhit:?} bundles"
+    );
+    assert!(swapped_hit.is_some() && swapped_miss.is_some());
+    assert!(no_straddle.is_some() && outer_for_allhit.is_some());
+}
