@@ -135,6 +135,47 @@ impl NodeTester for FloatTester {
     }
 }
 
+/// A node tester with a conservativeness check on scenes: every node that `inner` culls although the
+/// exact slab test keeps it (a cull by the planes) is checked exactly — no triangle of its subtree is hit
+/// by the ray within its current `[t_min, t_max]` ([`golden::tri::tri_hit`]).
+struct Checked<'a, T> {
+    inner: T,
+    bvh: &'a Bvh,
+    tris: &'a [golden::tri::Triangle],
+    /// Plane culls checked.
+    checked: u64,
+    /// Plane culls of a node whose triangle the ray hits: correctness bugs.
+    violations: u64,
+}
+
+impl<'a, T> Checked<'a, T> {
+    fn new(inner: T, bvh: &'a Bvh, tris: &'a [golden::tri::Triangle]) -> Self {
+        Checked {
+            inner,
+            bvh,
+            tris,
+            checked: 0,
+            violations: 0,
+        }
+    }
+}
+
+impl<T: NodeTester> NodeTester for Checked<'_, T> {
+    fn test(&mut self, ray: &Ray, node: usize) -> Option<(f64, f64)> {
+        let r = self.inner.test(ray, node);
+        if r.is_none() && golden::exact::slab_exact(ray, &self.bvh.nodes[node].bounds).hit {
+            self.checked += 1;
+            let hit = self
+                .bvh
+                .subtree_tris(node)
+                .iter()
+                .any(|&t| golden::tri::tri_hit(ray, &self.tris[t]).is_some());
+            self.violations += u64::from(hit);
+        }
+        r
+    }
+}
+
 fn subtree_vertices(bvh: &Bvh, tris: &[golden::tri::Triangle], node: usize) -> Vec<glam::DVec3> {
     bvh.subtree_tris(node)
         .iter()
@@ -216,8 +257,9 @@ impl Normals {
 /// baselines: AABB-only traversal in exact arithmetic, and the same format's tester with no planes
 /// (`K = 0`), which isolates what the planes save from what quantising the boxes costs. Every closest hit
 /// is compared with the exact AABB-only traversal's. Also the bytes per node of each layout
-/// ([`golden::plane::NodeLayout`]; shared: binary tree, two siblings). Writes `<out>/cull_scenes.csv` and
-/// returns a markdown table.
+/// ([`golden::plane::NodeLayout`]; shared: binary tree, two siblings). Every cull by the planes is checked
+/// against the exact ray-triangle test of the node's triangles ([`Checked`]); one that hides a hit is an
+/// error. Writes `<out>/cull_scenes.csv` and returns a markdown table.
 pub fn scenes(
     names: &[String],
     ks: &[usize],
@@ -228,6 +270,8 @@ pub fn scenes(
     out: &Path,
 ) -> Result<String, String> {
     let mut csv = String::from("scene,rays,datapath,format,k,normals,node_bytes,tri_tests,same_format_k0_tri_tests,exact_aabb_tri_tests,saved_vs_k0,saved_vs_exact_aabb,node_tests,closest_hit_mismatches\n");
+    // Per traversal: (plane culls checked, plane culls of a hit node, which run).
+    let mut check: Vec<(u64, u64, String)> = vec![];
     let mut table = String::from("| scene | rays | datapath | format | K | normals | bytes/node | triangle tests | saved vs same format K=0 | saved vs exact AABB | closest hits differing |\n|---|---|---|---|---|---|---|---|---|---|---|\n");
     for name in names {
         let sc = golden::scene::by_name(name, 1, None).map_err(|e| e.to_string())?;
@@ -296,7 +340,9 @@ pub fn scenes(
                 let mut k0 = 0;
                 for &(k, nm, planes) in &configs {
                     let nodes = fix_nodes(&cf, &map, &bvh, &sc.tris, planes, k)?;
-                    let run = trace(&bvh, &sc.tris, rays, &mut FixTester { cf, k, map, nodes });
+                    let mut t = Checked::new(FixTester { cf, k, map, nodes }, &bvh, &sc.tris);
+                    let run = trace(&bvh, &sc.tris, rays, &mut t);
+                    check.push((t.checked, t.violations, format!("{name} {set} {} k{k}", fmt.name())));
                     if k == 0 {
                         k0 = run.1.tri_tests;
                     }
@@ -308,7 +354,9 @@ pub fn scenes(
                 let mut k0 = 0;
                 for &(k, nm, planes) in &configs {
                     let nodes = float_nodes(&cf, &bvh, &sc.tris, planes, k)?;
-                    let run = trace(&bvh, &sc.tris, rays, &mut FloatTester { cf, k, nodes });
+                    let mut t = Checked::new(FloatTester { cf, k, nodes }, &bvh, &sc.tris);
+                    let run = trace(&bvh, &sc.tris, rays, &mut t);
+                    check.push((t.checked, t.violations, format!("{name} {set} {} k{k}", f.name())));
                     if k == 0 {
                         k0 = run.1.tri_tests;
                     }
@@ -319,5 +367,16 @@ pub fn scenes(
     }
     std::fs::create_dir_all(out).map_err(|e| e.to_string())?;
     std::fs::write(out.join("cull_scenes.csv"), csv).map_err(|e| e.to_string())?;
+    let checked: u64 = check.iter().map(|c| c.0).sum();
+    if let Some((_, v, which)) = check.iter().find(|c| c.1 > 0) {
+        return Err(format!(
+            "{which}: {v} plane culls of a node whose triangle the ray hits (a correctness bug)"
+        ));
+    }
+    let _ = writeln!(
+        table,
+        "\n{checked} plane culls (nodes the planes culled although the exact slab test kept them) checked \
+         against the exact ray-triangle test on every triangle below them: none hides a hit."
+    );
     Ok(table)
 }
