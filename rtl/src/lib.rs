@@ -151,3 +151,16 @@ pub type PlaneFloatE8M23K1 = PlaneFloat<8, 23, 32, 1>;
 pub type PlaneFloatE8M23K2 = PlaneFloat<8, 23, 32, 2>;
 /// The chained float node tester (slab + 4 cull planes) in binary32.
 pub type PlaneFloatE8M23K4 = PlaneFloat<8, 23, 32, 4>;
+
+pub mod bundle_fix;
+pub mod bundle_test;
+pub mod dist_le;
+pub mod edge_le;
+pub mod fold_diff;
+
+/// The fixed-point AllHit + AnyHit bundle pair over b8 (`FD = 6`).
+pub type BundleFixB8 = bundle_fix::BundleFix<8, 9, 9, 14>;
+/// The same over b12 (`FD = 10`).
+pub type BundleFixB12 = bundle_fix::BundleFix<12, 13, 13, 20>;
+/// The same over b16 (`FD = 14`).
+pub type BundleFixB16 = bundle_fix::BundleFix<16, 17, 17, 24>;

@@ -36,3 +36,4 @@ pub fn out_dir() -> std::path::PathBuf {
             .join("out"),
     }
 }
+pub mod bundle_tb;
