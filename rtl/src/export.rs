@@ -3,8 +3,14 @@
 //! rust-hdl names the top module `top` and each child `top$path`; the export renames the whole family
 //! after the block and its format (for example `slab_fix_g16_i20f14_t24f6`), so several configurations
 //! can be synthesised together.
+//!
+//! [`export_all`] writes the slab testers and the cull-plane testers that the synthesis report compares
+//! (`scripts/synth plane_`): the table option `PlaneFix` and the fraction option `PlaneFrac` over b12 and
+//! b16 with 1 and 4 planes, and the float `PlaneFloat` with 1 plane.
 
 use golden::fixed::FixFormat;
+use golden::plane_fix::CullFixFormat;
+use golden::plane_float::CullFloatFormat;
 use rust_hdl::prelude::*;
 use std::path::{Path, PathBuf};
 
@@ -71,8 +77,80 @@ pub fn export_all(dir: &Path) -> std::io::Result<Vec<PathBuf>> {
             crate::SLAB_FLOAT_LATENCY,
         )?;
     }
+    for (module, v, lat) in plane_verilog() {
+        write(module, v, lat)?;
+    }
     std::fs::write(dir.join("latency.csv"), latency)?;
     Ok(out)
+}
+
+/// Module name of the table option of the fixed cull-plane tester, e.g.
+/// `plane_fix_g12_i16f11_t20f6_n8_fd11_r8_k4` (the testbenches' name).
+pub fn plane_fix_module(cf: &CullFixFormat, k: usize) -> String {
+    format!("plane_fix_{}_k{k}", cf.name())
+}
+
+/// Module name of the fraction option, e.g. `plane_fix_frac_g12_i16f11_t20f6_n8_fd11_k4` (no table bits).
+pub fn plane_frac_module(cf: &CullFixFormat, k: usize) -> String {
+    format!(
+        "plane_fix_frac_{}_n{}_fd{}_k{k}",
+        cf.base.name(),
+        cf.n,
+        cf.fd
+    )
+}
+
+/// `(module, Verilog, latency)` of the cull-plane testers in the synthesis report: both options of the
+/// fixed tester over b12 and b16 with 1 and 4 planes, the float tester with 1 plane.
+pub fn plane_verilog() -> Vec<(String, String, usize)> {
+    fn named<S: crate::SlabIo>(module: String, mut uut: S) -> (String, String, usize) {
+        let v = verilog_named(&mut uut, &module);
+        (module, v, S::LATENCY)
+    }
+    let b12 = CullFixFormat::over(FixFormat::b12());
+    let b16 = CullFixFormat::over(FixFormat::b16());
+    let mut v = vec![
+        named(
+            plane_fix_module(&b12, 1),
+            crate::PlaneFixB12::<1>::new(&b12),
+        ),
+        named(
+            plane_fix_module(&b12, 4),
+            crate::PlaneFixB12::<4>::new(&b12),
+        ),
+        named(
+            plane_fix_module(&b16, 1),
+            crate::PlaneFixB16::<1>::new(&b16),
+        ),
+        named(
+            plane_fix_module(&b16, 4),
+            crate::PlaneFixB16::<4>::new(&b16),
+        ),
+        named(
+            plane_frac_module(&b12, 1),
+            crate::PlaneFracB12::<1>::new(&b12),
+        ),
+        named(
+            plane_frac_module(&b12, 4),
+            crate::PlaneFracB12::<4>::new(&b12),
+        ),
+        named(
+            plane_frac_module(&b16, 1),
+            crate::PlaneFracB16::<1>::new(&b16),
+        ),
+        named(
+            plane_frac_module(&b16, 4),
+            crate::PlaneFracB16::<4>::new(&b16),
+        ),
+    ];
+    for (f, k) in crate::plane_float_export::PLANE_FLOAT_CONFIGS {
+        if k == 1 {
+            let m = crate::plane_float_export::plane_float_module(&CullFloatFormat::over(f), k);
+            let text = crate::plane_float_export::plane_float_verilog(&f, k).expect("instantiated");
+            v.push((m, text, crate::PLANE_FLOAT_LATENCY));
+        }
+    }
+    v
 }
 
 /// Module name of a float unit (`add`, `mul`): format and rounding mode, e.g. `fp_add_e8m23_rd`.

@@ -152,6 +152,24 @@ pub type PlaneFloatE8M23K2 = PlaneFloat<8, 23, 32, 2>;
 /// The chained float node tester (slab + 4 cull planes) in binary32.
 pub type PlaneFloatE8M23K4 = PlaneFloat<8, 23, 32, 4>;
 
+pub mod code_frac_cmp;
+pub mod frac_cmp;
+pub mod frac_pick;
+pub mod frac_tree;
+pub mod plane_frac;
+pub mod plane_frac_bound;
+
+/// The fraction option of the chained tester ([`plane_frac::PlaneFrac`]) over b12 (`N = 8`, `FD = 11`)
+/// with `K` planes.
+pub type PlaneFracB12<const K: usize> =
+    plane_frac::PlaneFrac<12, 13, 16, 20, 8, 14, 24, 25, 23, 22, 47, K>;
+/// The same over b8 (`FD = 8`).
+pub type PlaneFracB8<const K: usize> =
+    plane_frac::PlaneFrac<8, 9, 12, 14, 8, 11, 20, 21, 20, 19, 40, K>;
+/// The same over b16 (`FD = 14`).
+pub type PlaneFracB16<const K: usize> =
+    plane_frac::PlaneFrac<16, 17, 20, 24, 8, 17, 28, 29, 26, 25, 54, K>;
+
 pub mod bundle_fix;
 pub mod bundle_test;
 pub mod dist_le;
