@@ -51,7 +51,9 @@ pub fn region_points(b: &Aabb, p: &Plane) -> Vec<DVec3> {
         .map(corner)
         .collect();
     if pts.is_empty() {
-        let m = (0..8).min_by(|&i, &j| sides[i].cmp(&sides[j])).expect("8 corners");
+        let m = (0..8)
+            .min_by(|&i, &j| sides[i].cmp(&sides[j]))
+            .expect("8 corners");
         return vec![corner(m)];
     }
     let c = (b.min + b.max) * 0.5;
@@ -62,7 +64,11 @@ pub fn region_points(b: &Aabb, p: &Plane) -> Vec<DVec3> {
             if m2 == m || sides[m].is_positive() == sides[m2].is_positive() {
                 continue;
             }
-            let (inside, outside) = if sides[m].is_positive() { (m2, m) } else { (m, m2) };
+            let (inside, outside) = if sides[m].is_positive() {
+                (m2, m)
+            } else {
+                (m, m2)
+            };
             let (q0, q1) = (corner(inside), corner(outside));
             // n_a (x_a - c_a) = w - sum over the other axes; n_a is nonzero since the sides differ.
             let mut rest = p.w;
@@ -78,7 +84,11 @@ pub fn region_points(b: &Aabb, p: &Plane) -> Vec<DVec3> {
                 if !e.side(x).is_negative() || x[a] == q1[a] {
                     break;
                 }
-                x[a] = if toward { x[a].next_up() } else { x[a].next_down() };
+                x[a] = if toward {
+                    x[a].next_up()
+                } else {
+                    x[a].next_down()
+                };
             }
             if e.side(x).is_negative() {
                 x = q1; // still short of the plane after 64 steps: the whole edge is kept
@@ -293,7 +303,11 @@ mod tests {
             let n = DVec3::new(
                 rng.gen_range(-1.0..1.0),
                 rng.gen_range(-1.0..1.0),
-                if case % 3 == 0 { 0.0 } else { rng.gen_range(-1.0..1.0) },
+                if case % 3 == 0 {
+                    0.0
+                } else {
+                    rng.gen_range(-1.0..1.0)
+                },
             );
             let p = Plane {
                 n,
@@ -306,21 +320,27 @@ mod tests {
             let c = (b.min + b.max) * 0.5;
             let e = ExactPlane::from_world(&p, &b);
             let inside: Vec<DVec3> = (0..200)
-                .map(|_| {
-                    b.min
-                        + (b.max - b.min)
-                            * DVec3::new(rng.gen(), rng.gen(), rng.gen())
-                })
+                .map(|_| b.min + (b.max - b.min) * DVec3::new(rng.gen(), rng.gen(), rng.gen()))
                 .filter(|x| !e.side(*x).is_positive())
                 .collect();
             kept += inside.len();
             // Every sampled point of the region is within the hull: check against random planes
             // through the hull's support (any direction u: max over points of u . x bounds u . sample).
             for _ in 0..20 {
-                let u = DVec3::new(rng.gen_range(-1.0..1.0), rng.gen_range(-1.0..1.0), rng.gen_range(-1.0..1.0));
-                let hull = pts.iter().map(|x| u.dot(*x - c)).fold(f64::NEG_INFINITY, f64::max);
+                let u = DVec3::new(
+                    rng.gen_range(-1.0..1.0),
+                    rng.gen_range(-1.0..1.0),
+                    rng.gen_range(-1.0..1.0),
+                );
+                let hull = pts
+                    .iter()
+                    .map(|x| u.dot(*x - c))
+                    .fold(f64::NEG_INFINITY, f64::max);
                 for x in &inside {
-                    assert!(u.dot(*x - c) <= hull + 1e-12, "case {case}: {x} outside the hull along {u}");
+                    assert!(
+                        u.dot(*x - c) <= hull + 1e-12,
+                        "case {case}: {x} outside the hull along {u}"
+                    );
                 }
             }
         }
@@ -334,10 +354,10 @@ mod tests {
         assert_eq!((l.box_bits, l.normal_bits, l.offset_bits), (96, 24, 28));
         assert_eq!(l.own_bytes(0), 12);
         assert_eq!(l.own_bytes(4), 38); // 304 bits
-        // Siblings of a binary tree: 96 + 4 * 28 = 208 bits (26 bytes), plus half of 12 bytes of normals.
+                                        // Siblings of a binary tree: 96 + 4 * 28 = 208 bits (26 bytes), plus half of 12 bytes of normals.
         assert_eq!(l.shared_bytes(4, 2), 32.0);
         assert_eq!(l.shared_bytes(1, 2), 16.0 + 1.5); // 124 bits round up to 16 bytes
-        // fp16: everything 16 bits; K = 2 own: 6 + 8 values, 28 bytes; shared by 4: 16 + 12 / 4.
+                                                      // fp16: everything 16 bits; K = 2 own: 6 + 8 values, 28 bytes; shared by 4: 16 + 12 / 4.
         let f = crate::plane_float::CullFloatFormat::over(crate::float::FloatFormat::FP16).layout();
         assert_eq!(f.own_bytes(2), 28);
         assert_eq!(f.shared_bytes(2, 4), 19.0);

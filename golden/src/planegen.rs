@@ -416,7 +416,10 @@ pub fn generate_shared(bvh: &Bvh, tris: &[Triangle], k: usize) -> Result<Vec<Vec
             g.iter().map(|&i| fraction(bvh, &ext, &dirs, i, j)).sum()
         });
         let mut taken = 0;
-        for j in best_k(cands.into_iter().filter(|c| c.frac > 0.0).collect(), 8) {
+        for j in best_k(
+            cands.into_iter().filter(|c| c.frac > 0.0).collect(),
+            MAX_PLANES,
+        ) {
             if taken == k {
                 break;
             }
@@ -593,7 +596,12 @@ mod tests {
                     })
                     .sum()
             };
-            assert!(best(&shared) > 0.5 * best(&own), "{} vs {}", best(&shared), best(&own));
+            assert!(
+                best(&shared) > 0.5 * best(&own),
+                "{} vs {}",
+                best(&shared),
+                best(&own)
+            );
         }
     }
 

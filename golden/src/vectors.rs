@@ -107,7 +107,10 @@ fn check_planes(src: &str, line: usize, planes: &[Plane]) -> Result<(), Error> {
                 src,
                 line,
                 &format!("planes[{k}] normal"),
-                format!("{} is not allowed: a plane needs a finite, nonzero normal", p.n),
+                format!(
+                    "{} is not allowed: a plane needs a finite, nonzero normal",
+                    p.n
+                ),
             ));
         }
         if !p.w.is_finite() {
@@ -210,7 +213,12 @@ fn parse_json_line(src: &str, line: usize, text: &str, index: u64) -> Result<Vec
     let mut planes = vec![];
     if let Some(ps) = obj.get("planes") {
         let ps = ps.as_array().ok_or_else(|| {
-            line_err(src, line, "planes", "expected an array of [nx, ny, nz, w] arrays")
+            line_err(
+                src,
+                line,
+                "planes",
+                "expected an array of [nx, ny, nz, w] arrays",
+            )
         })?;
         for (k, p) in ps.iter().enumerate() {
             let field = format!("planes[{k}]");
@@ -221,7 +229,12 @@ fn parse_json_line(src: &str, line: usize, text: &str, index: u64) -> Result<Vec
             let mut v = [0.0; 4];
             for (c, x) in q.iter().enumerate() {
                 v[c] = json_num(x).ok_or_else(|| {
-                    line_err(src, line, &format!("{field}[{c}]"), format!("`{x}` is not a number"))
+                    line_err(
+                        src,
+                        line,
+                        &format!("{field}[{c}]"),
+                        format!("`{x}` is not a number"),
+                    )
                 })?;
             }
             planes.push(Plane {
@@ -552,7 +565,10 @@ mod tests {
         let got = read(VecFormat::Csv, &rows);
         assert_eq!(got[0].as_ref().unwrap().planes, vec![]);
         let e = got[1].clone().unwrap_err().to_string();
-        assert!(e.contains("test:3") && e.contains("planes[0] normal"), "{e}");
+        assert!(
+            e.contains("test:3") && e.contains("planes[0] normal"),
+            "{e}"
+        );
     }
 
     #[test]

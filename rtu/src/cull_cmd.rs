@@ -308,7 +308,10 @@ pub fn scenes(
                             nm: Normals,
                             bytes: f64,
                             k0: u64,
-                            (hits, st): (Vec<Option<golden::traverse::Hit>>, golden::traverse::TraversalStats)| {
+                            (hits, st): (
+                Vec<Option<golden::traverse::Hit>>,
+                golden::traverse::TraversalStats,
+            )| {
                 let diff = hits.iter().zip(&base_hits).filter(|(a, b)| a != b).count();
                 let saved = |b: u64| 1.0 - st.tri_tests as f64 / b.max(1) as f64;
                 let _ = writeln!(
@@ -342,11 +345,23 @@ pub fn scenes(
                     let nodes = fix_nodes(&cf, &map, &bvh, &sc.tris, planes, k)?;
                     let mut t = Checked::new(FixTester { cf, k, map, nodes }, &bvh, &sc.tris);
                     let run = trace(&bvh, &sc.tris, rays, &mut t);
-                    check.push((t.checked, t.violations, format!("{name} {set} {} k{k}", fmt.name())));
+                    check.push((
+                        t.checked,
+                        t.violations,
+                        format!("{name} {set} {} k{k}", fmt.name()),
+                    ));
                     if k == 0 {
                         k0 = run.1.tri_tests;
                     }
-                    emit("fixed", fmt.name(), k, nm, bytes(cf.layout(), k, nm), k0, run);
+                    emit(
+                        "fixed",
+                        fmt.name(),
+                        k,
+                        nm,
+                        bytes(cf.layout(), k, nm),
+                        k0,
+                        run,
+                    );
                 }
             }
             for f in floats {
@@ -356,7 +371,11 @@ pub fn scenes(
                     let nodes = float_nodes(&cf, &bvh, &sc.tris, planes, k)?;
                     let mut t = Checked::new(FloatTester { cf, k, nodes }, &bvh, &sc.tris);
                     let run = trace(&bvh, &sc.tris, rays, &mut t);
-                    check.push((t.checked, t.violations, format!("{name} {set} {} k{k}", f.name())));
+                    check.push((
+                        t.checked,
+                        t.violations,
+                        format!("{name} {set} {} k{k}", f.name()),
+                    ));
                     if k == 0 {
                         k0 = run.1.tri_tests;
                     }

@@ -4,9 +4,9 @@ use glam::DVec3;
 use golden::fixed::{FixFormat, GridMap};
 use golden::float::FloatFormat;
 use golden::gen::{GenKind, SlabGen};
-use golden::slab_float::{quantize_box, quantize_ray};
 use golden::plane_fix::CullFixFormat;
 use golden::plane_float::CullFloatFormat;
+use golden::slab_float::{quantize_box, quantize_ray};
 use golden::vectors::{
     csv_vector_header, read_vectors, write_header, write_result, write_vector, VecFormat, Vector,
     MAX_VECTOR_PLANES,

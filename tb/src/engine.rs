@@ -193,7 +193,12 @@ where
         engine,
         ctx,
         || S::for_format(&ctx.cf),
-        || Ok(rtl::export::verilog_named(&mut S::for_format(&ctx.cf), &module)),
+        || {
+            Ok(rtl::export::verilog_named(
+                &mut S::for_format(&ctx.cf),
+                &module,
+            ))
+        },
         &module,
         tests,
         verilator_dir,

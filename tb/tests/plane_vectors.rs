@@ -48,9 +48,13 @@ fn vectors(seed: u64, n: usize, k: usize) -> Vec<Vector> {
         };
         write_vector(&mut text, VecFormat::JsonLines, &v).unwrap();
     }
-    read_vectors(std::io::Cursor::new(text), VecFormat::JsonLines, "generated")
-        .map(|v| v.unwrap())
-        .collect()
+    read_vectors(
+        std::io::Cursor::new(text),
+        VecFormat::JsonLines,
+        "generated",
+    )
+    .map(|v| v.unwrap())
+    .collect()
 }
 
 fn world_exact(v: &Vector) -> golden::exact::ExactHit {
@@ -123,7 +127,11 @@ fn plane_fix_engines_agree_on_user_vectors() {
     let res = all_engines(&[Engine::Model, Engine::Rtl, Engine::Verilator], |e| {
         let tests: Vec<_> = vs
             .iter()
-            .filter_map(|v| fix_vector(&ctx.cf, &map, v).ok().map(|(r, n)| (v.tag, r, n)))
+            .filter_map(|v| {
+                fix_vector(&ctx.cf, &map, v)
+                    .ok()
+                    .map(|(r, n)| (v.tag, r, n))
+            })
             .collect();
         let mut out = vec![];
         run_cull_fix(e, ctx, tests.into_iter(), &dir, None, |tag, r, o| {
@@ -168,11 +176,25 @@ fn the_hardware_engines_refuse_what_has_no_block() {
         k: 9,
     };
     let dir = tb::out_dir().join("verilator");
-    let e = run_cull_fix(Engine::Rtl, ctx, std::iter::empty::<(u64, _, _)>(), &dir, None, |_, _, _| Ok(()))
-        .unwrap_err();
+    let e = run_cull_fix(
+        Engine::Rtl,
+        ctx,
+        std::iter::empty::<(u64, _, _)>(),
+        &dir,
+        None,
+        |_, _, _| Ok(()),
+    )
+    .unwrap_err();
     assert!(e.contains("1 to 8"), "{e}");
     let ctx = CullFloatCtx::new(CullFloatFormat::over(FloatFormat::FP16), 3);
-    let e = run_cull_float(Engine::Rtl, ctx, std::iter::empty::<(u64, _, _)>(), &dir, None, |_, _, _| Ok(()))
-        .unwrap_err();
+    let e = run_cull_float(
+        Engine::Rtl,
+        ctx,
+        std::iter::empty::<(u64, _, _)>(),
+        &dir,
+        None,
+        |_, _, _| Ok(()),
+    )
+    .unwrap_err();
     assert!(e.contains("no PlaneFloat instance"), "{e}");
 }
