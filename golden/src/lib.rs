@@ -17,6 +17,7 @@
 //! [`vectors`].
 
 pub mod bundle;
+pub mod bundle_build;
 pub mod bundle_fix;
 pub mod bundle_float;
 pub mod bundle_gen;
