@@ -10,7 +10,9 @@
 //! | bit-accurate float | [`slab_float`] | [`plane_float`] | [`bundle_float`] | the same |
 //!
 //! Scenes, BVH, plane generation and traversal for the scene measurements: [`scene`], [`bvh`],
-//! [`planegen`], [`traverse`], [`tri`]; case generators [`gen`], [`cull_gen`], [`bundle_gen`].
+//! [`planegen`], [`traverse`], [`tri`]; bundles on scenes: [`bundle_build`] (the builder and splitting
+//! metric), [`bundle_trav`] (bundle traversal, decided vs ideal, cycles); case generators [`gen`],
+//! [`cull_gen`], [`bundle_gen`], and the bundle campaign's checks [`bundle_check`].
 //!
 //! The number formats and the outward quantisation that feeds the bit-accurate models live in [`fixed`];
 //! random and adversarial vector generators in [`gen`]; reading and writing user vector files in
@@ -18,9 +20,11 @@
 
 pub mod bundle;
 pub mod bundle_build;
+pub mod bundle_check;
 pub mod bundle_fix;
 pub mod bundle_float;
 pub mod bundle_gen;
+pub mod bundle_trav;
 pub mod check;
 pub mod cull_gen;
 pub mod error;

@@ -8,9 +8,10 @@ use golden::bundle::{
     conditions_hold, decide_exact, exact_box, exact_bundle, ray_hits_exact, ray_hits_ref, Bundle,
     BundleOf, ExactArith, Test,
 };
+use golden::bundle_check::{judge, oracle, truth, Tally};
 use golden::bundle_fix::{self, BundleFixFormat};
 use golden::bundle_float;
-use golden::bundle_gen::{BundleCase, BundleGen, BundleKind};
+use golden::bundle_gen::{BundleCase, BundleGen};
 use golden::exact::slab_exact;
 use golden::fixed::GridMap;
 use golden::float::FloatFormat;
@@ -31,135 +32,16 @@ fn campaign(seed: u64) -> impl Iterator<Item = BundleCase> {
     BundleGen::new(seed, lo, hi, 0.6)
 }
 
-/// The exact per-ray results of a case's listed rays.
-fn truth(c: &BundleCase) -> Vec<bool> {
-    c.rays
-        .iter()
-        .map(|r| slab_exact(r, &c.bounds).hit)
-        .collect()
-}
-
-/// What a datapath said of a bundle, checked against the exact oracle's answers and the listed rays.
-/// Returns a description of the first broken promise.
-fn judge(
-    c: &BundleCase,
-    truth: &[bool],
-    oracle: (bool, bool),
-    got: (bool, bool),
-) -> Result<(), String> {
-    let (all_hit, all_miss) = got;
-    let ctx = || format!("{:?} bundle {:?} box {:?}", c.kind, c.bundle, c.bounds);
-    if all_hit && all_miss {
-        return Err(format!("both all-hit and all-miss: {}", ctx()));
-    }
-    let first = |want: bool| truth.iter().position(|&h| h == want).map(|i| c.rays[i]);
-    match (all_hit, all_miss) {
-        (true, _) => {
-            if let Some(r) = first(false) {
-                return Err(format!("false all-hit: ray {r:?} misses; {}", ctx()));
-            }
-        }
-        (_, true) => {
-            if let Some(r) = first(true) {
-                return Err(format!("false all-miss: ray {r:?} hits; {}", ctx()));
-            }
-        }
-        _ => {}
-    }
-    if all_hit && !oracle.0 {
-        return Err(format!("all-hit where the exact oracle is not: {}", ctx()));
-    }
-    if all_miss && !oracle.1 {
-        return Err(format!("all-miss where the exact oracle is not: {}", ctx()));
-    }
-    Ok(())
-}
-
-/// Counts of one campaign.
-#[derive(Default, Debug)]
-struct Tally {
-    bundles: usize,
-    rays: usize,
-    all_hit: usize,
-    all_miss: usize,
-    oracle_hit: usize,
-    oracle_miss: usize,
-    ideal_hit: usize,
-    ideal_miss: usize,
-    straddling: usize,
-    /// Uniform (non-adversarial) bundles: count, all-hit, oracle all-hit, all-miss, oracle all-miss.
-    uniform: [usize; 5],
-    violations: Vec<String>,
-}
-
-impl Tally {
-    fn add(&mut self, c: &BundleCase, t: &[bool], oracle: (bool, bool), got: (bool, bool)) {
-        self.bundles += 1;
-        self.rays += t.len();
-        self.all_hit += usize::from(got.0);
-        self.all_miss += usize::from(got.1);
-        self.oracle_hit += usize::from(oracle.0);
-        self.oracle_miss += usize::from(oracle.1);
-        self.ideal_hit += usize::from(t.iter().all(|&h| h));
-        self.ideal_miss += usize::from(t.iter().all(|&h| !h));
-        self.straddling += usize::from(c.bundle.straddles());
-        if c.kind == BundleKind::Uniform {
-            for (n, v) in self
-                .uniform
-                .iter_mut()
-                .zip([true, got.0, oracle.0, got.1, oracle.1])
-            {
-                *n += usize::from(v);
-            }
-        }
-        if let Err(e) = judge(c, t, oracle, got) {
-            self.violations.push(e);
-        }
-    }
-
-    fn report(&self, name: &str, secs: f64) {
-        let pct = |n: usize| 100.0 * n as f64 / self.bundles.max(1) as f64;
-        println!(
-            "{name}: {} bundles ({} straddling), {} rays, {:.1} s; all-hit {:.1}% (oracle {:.1}%, \
-             listed rays {:.1}%), all-miss {:.1}% (oracle {:.1}%, listed rays {:.1}%), {} violations",
-            self.bundles,
-            self.straddling,
-            self.rays,
-            secs,
-            pct(self.all_hit),
-            pct(self.oracle_hit),
-            pct(self.ideal_hit),
-            pct(self.all_miss),
-            pct(self.oracle_miss),
-            pct(self.ideal_miss),
-            self.violations.len()
-        );
-        let u = &self.uniform;
-        let upct = |n: usize| 100.0 * n as f64 / u[0].max(1) as f64;
-        println!(
-            "{name}: uniform bundles only ({}): all-hit {:.1}% (oracle {:.1}%), all-miss {:.1}% (oracle {:.1}%)",
-            u[0],
-            upct(u[1]),
-            upct(u[2]),
-            upct(u[3]),
-            upct(u[4])
-        );
-    }
-
-    fn assert_clean(&self, name: &str) {
-        assert!(
-            self.violations.is_empty(),
-            "{name}: {} violations, first: {}",
-            self.violations.len(),
-            self.violations[0]
-        );
-        // Not vacuous: both answers are given on a real share of the bundles.
-        let min = self.bundles / 20;
-        assert!(
-            self.all_hit > min && self.all_miss > min,
-            "{name}: {self:?}"
-        );
-    }
+/// Asserts a campaign found no violation and is not vacuous: both answers are given on a real share of
+/// the bundles.
+fn assert_clean(name: &str, t: &Tally) {
+    assert_eq!(
+        t.violation_count, 0,
+        "{name}: {} violations, first: {}",
+        t.violation_count, t.violations[0]
+    );
+    let min = t.bundles / 20;
+    assert!(t.all_hit > min && t.all_miss > min, "{name}: {t:?}");
 }
 
 #[test]
@@ -260,8 +142,8 @@ fn bundle_exact_oracle_is_sound_and_allhit_is_exact_without_straddling() {
             .map(|r| slab_exact(r, &c.bounds).hit)
             .collect();
         let t = truth(&c);
-        let oracle = decide_exact(&c.bundle, &c.bounds).unwrap();
-        tally.add(&c, &t, oracle, oracle);
+        let oracle = oracle(&c);
+        tally.add(&c, &t, Some(oracle), oracle);
         // Sound on the corners too (the listed rays are checked by the tally).
         let every = corner_truth.iter().all(|&h| h);
         assert!(!oracle.0 || every, "false all-hit on a corner ray: {c:?}");
@@ -280,12 +162,16 @@ fn bundle_exact_oracle_is_sound_and_allhit_is_exact_without_straddling() {
             );
         }
     }
-    tally.report("exact oracle", start.elapsed().as_secs_f64());
+    println!(
+        "{}; {:.1} s",
+        tally.report("exact oracle"),
+        start.elapsed().as_secs_f64()
+    );
     println!(
         "exact oracle: AllHit == 'all 128 corner rays hit' on {exact_checked} non-straddling bundles; \
          {straddling_missed} straddling bundles with every corner hitting were not decided"
     );
-    tally.assert_clean("exact oracle");
+    assert_clean("exact oracle", &tally);
 }
 
 #[test]
@@ -334,17 +220,17 @@ fn run_datapaths(seed: u64, dps: &[Datapath]) {
     let mut tallies: Vec<Tally> = dps.iter().map(|_| Tally::default()).collect();
     for c in campaign(seed).take(BUNDLES) {
         let t = truth(&c);
-        let oracle = decide_exact(&c.bundle, &c.bounds).unwrap();
+        let oracle = oracle(&c);
         for ((_, dp), tally) in dps.iter().zip(&mut tallies) {
-            tally.add(&c, &t, oracle, dp(&c));
+            tally.add(&c, &t, Some(oracle), dp(&c));
         }
     }
     let secs = start.elapsed().as_secs_f64();
     for ((name, _), tally) in dps.iter().zip(&tallies) {
-        tally.report(name, secs);
+        println!("{}; {secs:.1} s", tally.report(name));
     }
     for ((name, _), tally) in dps.iter().zip(&tallies) {
-        tally.assert_clean(name);
+        assert_clean(name, tally);
     }
 }
 
@@ -406,7 +292,7 @@ fn bundle_fixed_datapath_equals_exact_arithmetic_on_its_own_inputs() {
 fn caught_after(seed: u64, wrong: impl Fn(&BundleCase) -> (bool, bool)) -> Option<usize> {
     campaign(seed)
         .take(20_000)
-        .position(|c| judge(&c, &truth(&c), (true, true), wrong(&c)).is_err())
+        .position(|c| judge(&c, &truth(&c), None, wrong(&c)).is_err())
 }
 
 #[test]
