@@ -24,11 +24,11 @@
 
 use crate::bundle::{decide_exact, Bundle};
 use crate::bundle_build::{Built, SplitMetric};
+use crate::bundle_check::slab_hit;
 use crate::bundle_fix::{decide_fix, BundleFixFormat};
 use crate::bundle_float::decide_float;
 use crate::bvh::{Bvh, NodeKind};
 use crate::error::Error;
-use crate::exact::slab_exact;
 use crate::fixed::GridMap;
 use crate::float::FloatFormat;
 use crate::geom::{Aabb, Ray};
@@ -79,7 +79,7 @@ impl BundlePath {
     /// The pair's two-ray answer for one ray: it may hit `bx` (never false for a ray that hits).
     pub fn may_hit(&self, r: &Ray, bx: &Aabb) -> Result<bool, Error> {
         match self {
-            BundlePath::Exact => Ok(slab_exact(r, bx).hit),
+            BundlePath::Exact => Ok(slab_hit(r, bx)),
             _ => Ok(!self.decide(&Bundle::of_ray(r)?, bx)?.1),
         }
     }
@@ -162,7 +162,7 @@ impl ExactHits {
                 let mut stack = vec![0usize];
                 while let Some(n) = stack.pop() {
                     let nd = &bvh.nodes[n];
-                    if !slab_exact(r, &nd.bounds).hit {
+                    if !slab_hit(r, &nd.bounds) {
                         continue;
                     }
                     nodes.push(n as u32);

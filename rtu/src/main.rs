@@ -3,6 +3,7 @@
 //! With no subcommand it runs the main job on the built-in default scene (see [`main_job`]).
 
 mod bench;
+mod bundle_cmd;
 mod campaign_cmd;
 mod cull_cmd;
 mod float_check;
@@ -103,6 +104,13 @@ enum Cmd {
         #[arg(long, default_value_t = 1)]
         seed: u64,
     },
+    /// Ray bundles on scenes with the AllHit / AnyHit pair: bundle-box tests decided without splitting
+    /// against the ideal, and tester cycles against testing the rays one by one (writes
+    /// bundle_scenes.csv and bundle_scenes.md).
+    BundleScenes(bundle_cmd::Args),
+    /// The bundle pair's conservativeness campaign: random and adversarial bundles on every datapath
+    /// against the exact per-ray results and the exact oracle (writes bundle_campaign.md).
+    BundleCampaign(bundle_cmd::CampaignArgs),
     /// Cull planes on scenes: triangle tests saved against AABB-only traversal (the same format with no
     /// planes, and exact), with each node's own normals or normals shared by siblings, bytes per node,
     /// closest hits compared with the exact reference.
@@ -225,6 +233,11 @@ fn main() -> ExitCode {
             std::fs::create_dir_all(&cli.out).map_err(|e| e.to_string())?;
             std::fs::write(cli.out.join("cull_campaign.md"), t).map_err(|e| e.to_string())
         })(),
+        Cmd::BundleScenes(a) => bundle_cmd::scenes(&a, &cli.out).and_then(|t| {
+            print!("{t}");
+            std::fs::write(cli.out.join("bundle_scenes.md"), t).map_err(|e| e.to_string())
+        }),
+        Cmd::BundleCampaign(a) => bundle_cmd::campaign(&a, &cli.out).map(|t| print!("{t}")),
         Cmd::CullScenes {
             scenes,
             k,
