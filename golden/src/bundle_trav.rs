@@ -49,11 +49,7 @@ impl BundlePath {
     pub fn name(&self) -> String {
         match self {
             BundlePath::Exact => "exact".into(),
-            BundlePath::Fix(bf, _) => crate::fixed::FixFormat::presets()
-                .iter()
-                .zip(["b8", "b12", "b16"])
-                .find(|(p, _)| **p == bf.base)
-                .map_or_else(|| bf.base.name(), |(_, n)| n.to_string()),
+            BundlePath::Fix(bf, _) => short_name(&bf.base),
             BundlePath::Float(f) => f.name(),
         }
     }
@@ -83,6 +79,15 @@ impl BundlePath {
             _ => Ok(!self.decide(&Bundle::of_ray(r)?, bx)?.1),
         }
     }
+}
+
+/// A fixed format's preset name (`b16`), or its full name for other formats.
+pub fn short_name(f: &crate::fixed::FixFormat) -> String {
+    crate::fixed::FixFormat::presets()
+        .iter()
+        .zip(["b8", "b12", "b16"])
+        .find(|(p, _)| *p == f)
+        .map_or_else(|| f.name(), |(_, n)| n.to_string())
 }
 
 /// Counts of a set of bundle traversals; see the module doc.

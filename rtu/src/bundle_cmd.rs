@@ -48,6 +48,19 @@ pub struct Args {
     /// Seed of the scenes and the secondary rays.
     #[arg(long, default_value_t = 1)]
     seed: u64,
+    /// Datapath of the charts (default: the first fixed one listed, else the first).
+    #[arg(long)]
+    chart_path: Option<String>,
+}
+
+/// One measured configuration, kept for the charts.
+struct Rec {
+    series: String,
+    path: String,
+    rebound: bool,
+    metric: String,
+    per: f64,
+    st: BundleStats,
 }
 
 fn list<T>(s: &str, f: impl Fn(&str) -> Result<T, String>) -> Result<Vec<T>, String> {
@@ -174,6 +187,7 @@ pub fn scenes(a: &Args, out: &Path) -> Result<String, String> {
     let mut table = String::from(
         "| scene | rays | bundling | rays/bundle | datapath | rebound | metric | tests | decided / ideal | cycles: single-ray tester / bundle pair | pair without / with bundles | false hits |\n|---|---|---|---|---|---|---|---|---|---|---|---|\n",
     );
+    let mut recs: Vec<Rec> = vec![];
     for name in &names {
         let sc = golden::scene::by_name(name, a.seed, None).map_err(|e| e.to_string())?;
         let bvh = Bvh::build(&sc.tris, 4).map_err(|e| e.to_string())?;
@@ -238,6 +252,14 @@ pub fn scenes(a: &Args, out: &Path) -> Result<String, String> {
                                 })?;
                         pb.finish_and_clear();
                         row(&mut csv, &mut table, name, &bd, path, rebound, mname, &st);
+                        recs.push(Rec {
+                            series: format!("{name} {}", bd.set),
+                            path: path.name(),
+                            rebound,
+                            metric: mname.clone(),
+                            per: st.rays as f64 / st.bundles.max(1) as f64,
+                            st,
+                        });
                     }
                 }
             }
@@ -245,7 +267,71 @@ pub fn scenes(a: &Args, out: &Path) -> Result<String, String> {
     }
     std::fs::create_dir_all(out).map_err(|e| e.to_string())?;
     std::fs::write(out.join("bundle_scenes.csv"), &csv).map_err(|e| e.to_string())?;
+    let chart_path = match &a.chart_path {
+        Some(p) => p.clone(),
+        None => paths
+            .iter()
+            .position(|p| matches!(p, PathSpec::Fix(_)))
+            .or((!paths.is_empty()).then_some(0))
+            .and_then(|i| recs.iter().find(|r| r.path == path_name(&paths[i])))
+            .map_or_else(String::new, |r| r.path.clone()),
+    };
+    charts(&recs, &chart_path, out)?;
+    let _ = writeln!(
+        table,
+        "\nCharts ({chart_path}, re-bounded, no early split): {}/bundle_decided.svg, {}/bundle_speedup.svg",
+        out.display(),
+        out.display()
+    );
     Ok(table)
+}
+
+fn path_name(p: &PathSpec) -> String {
+    match p {
+        PathSpec::Exact => BundlePath::Exact.name(),
+        PathSpec::Fix(bf) => golden::bundle_trav::short_name(&bf.base),
+        PathSpec::Float(f) => f.name(),
+    }
+}
+
+/// Decided-of-ideal and speed-up against rays per bundle, one series per scene and ray set.
+fn charts(recs: &[Rec], path: &str, out: &Path) -> Result<(), String> {
+    let mut decided: Vec<crate::chart::Series> = vec![];
+    let mut speedup: Vec<crate::chart::Series> = vec![];
+    for r in recs
+        .iter()
+        .filter(|r| r.path == path && r.rebound && r.metric == "never")
+    {
+        let i = match decided.iter().position(|s| s.0 == r.series) {
+            Some(i) => i,
+            None => {
+                decided.push((r.series.clone(), vec![]));
+                speedup.push((r.series.clone(), vec![]));
+                decided.len() - 1
+            }
+        };
+        decided[i].1.push((r.per, 100.0 * r.st.decided_of_ideal()));
+        speedup[i].1.push((r.per, r.st.speedup()));
+    }
+    for s in decided.iter_mut().chain(speedup.iter_mut()) {
+        s.1.sort_by(|a, b| a.0.total_cmp(&b.0));
+    }
+    crate::chart::line_chart(
+        &out.join("bundle_decided.svg"),
+        &format!("Bundle-box tests decided without splitting, % of the decidable ({path})"),
+        "rays per bundle (mean)",
+        "decided / ideal (%)",
+        &decided,
+        false,
+    )?;
+    crate::chart::line_chart(
+        &out.join("bundle_speedup.svg"),
+        &format!("Single-ray tester cycles / bundle pair cycles ({path})"),
+        "rays per bundle (mean)",
+        "speed-up (x)",
+        &speedup,
+        true,
+    )
 }
 
 #[allow(clippy::too_many_arguments)]
@@ -361,7 +447,7 @@ pub fn campaign(a: &CampaignArgs, out: &Path) -> Result<String, String> {
         .collect::<Result<Vec<_>, _>>()?;
     let names: Vec<String> = fixed
         .iter()
-        .map(|bf| format!("fixed {}", BundlePath::Fix(*bf, maps[0].clone()).name()))
+        .map(|bf| format!("fixed {}", golden::bundle_trav::short_name(&bf.base)))
         .chain(floats.iter().map(|f| format!("float {}", f.name())))
         .collect();
     let pb = ProgressBar::new(a.bundles);

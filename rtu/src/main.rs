@@ -5,6 +5,7 @@
 mod bench;
 mod bundle_cmd;
 mod campaign_cmd;
+mod chart;
 mod cull_cmd;
 mod float_check;
 mod main_job;
