@@ -25,6 +25,7 @@ pub mod bundle_fix;
 pub mod bundle_float;
 pub mod bundle_gen;
 pub mod bundle_trav;
+pub mod bundle_vectors;
 pub mod check;
 pub mod cull_gen;
 pub mod error;
