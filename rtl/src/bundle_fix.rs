@@ -3,13 +3,21 @@
 //! pair takes either one bundle, which both testers judge, or two single rays, one per tester (the pair of
 //! testing blocks of US 11,308,683 and the "one bundle or two rays" claims of US 11,682,160).
 //!
-//! Bit for bit `golden::bundle_fix::{all_hit_fix, all_miss_fix}` ([`PairInput`] says which inputs):
-//! `all_hit` is AllHit on the inner box with `t_lo`, `all_miss` is the negation of AnyHit's pass on the
-//! outer box with `t_hi` (the conditions, their bounds and proofs are in `golden/src/bundle.rs`). For a
-//! single ray both tests compute the exact single-ray test of the quantised inputs, so with two rays
-//! `all_hit` says ray A hits and `all_miss` says ray B misses. The ports mirror
-//! `golden::bundle_fix::FixBundle` and `golden::bundle::BoxPair<FixBox>`; for a node box stored on the
-//! grid the two boxes are equal.
+//! Bit for bit `golden::bundle_fix::{all_hit_fix, all_miss_fix}` ([`PairInput::model`] says which
+//! inputs). With a bundle, `all_hit` is AllHit on the inner box with `t_lo` and `all_miss` the negation of
+//! AnyHit's pass on the outer box with `t_hi` (the conditions, their bounds and proofs are in
+//! `golden/src/bundle.rs`). The ports mirror `golden::bundle_fix::FixBundle` and
+//! `golden::bundle::BoxPair<FixBox>`; for a node box stored on the grid the two boxes are equal.
+//!
+//! # Two-ray mode
+//! A world ray quantised by `golden::bundle_fix::quantize_bundle` (of `Bundle::of_ray`) is a tiny bundle
+//! (origin floored and ceiled, direction code floored and ceiled, `t_max` floored and ceiled) unless every
+//! input is on the grid. AllHit bounds on such a bundle may say "misses" for a ray that hits (a false
+//! miss, which would drop a hit). So in two-ray mode both testers run AnyHit bounds on the outer box with
+//! their ray's `t_hi` (the AllHit tester through its `any_mode` input): ray A is the bundle ports (all of
+//! them, as quantised), ray B the `r_*` ports. Each answer is sound by Theorem 2b for every ray of the
+//! tiny bundle, so for the world ray inside it: "misses" is never said of a ray that hits. For a ray on
+//! the grid (a point bundle) AnyHit is the exact single-ray test (Theorem 1).
 //!
 //! # Parameters
 //! `G`, `V = G + 1`, `D = FD + 3`, `T`, as [`BundleTest`]; the presets are [`crate::BundleFixB8`],
@@ -17,15 +25,18 @@
 //!
 //! # Inputs
 //! - `clock`; `valid_in`, `tag_in` (16 bits, opaque, returned with the result);
-//! - `o_lo`, `o_hi`, `d_lo`, `d_hi` (arrays over x, y, z), `t_lo`, `t_hi`: the bundle (ray A: a point
-//!   bundle);
-//! - `two_rays`: the AnyHit tester takes ray B (`r_o`, `r_d`, `r_t`: origin, direction code, t code)
-//!   instead of the bundle;
-//! - `in_lo`, `in_hi`: the inner box (AllHit); `out_lo`, `out_hi`: the outer box (AnyHit).
+//! - `o_lo`, `o_hi`, `d_lo`, `d_hi` (arrays over x, y, z), `t_lo`, `t_hi`: the bundle (in two-ray mode
+//!   ray A, whose `t_lo` is not used);
+//! - `two_rays`: two-ray mode;
+//! - `r_o_lo`, `r_o_hi`, `r_d_lo`, `r_d_hi` (arrays), `r_t`: ray B (its `t_hi`), used in two-ray mode only;
+//! - `in_lo`, `in_hi`: the inner box (AllHit, bundle mode only); `out_lo`, `out_hi`: the outer box.
 //!
 //! # Outputs (registered, [`BUNDLE_FIX_LATENCY`] clocks after the inputs)
-//! - `valid_out`, `tag_out`, `all_hit` (every ray of the bundle hits; ray A hits), `all_miss` (every ray
-//!   misses; ray B misses). For a bundle both low means "some may hit": descend.
+//! - `valid_out`, `tag_out`;
+//! - `all_hit`: every ray of the bundle hits; in two-ray mode: ray A *may hit* (AnyHit passes);
+//! - `all_miss`: every ray of the bundle misses; in two-ray mode: ray B misses.
+//!
+//! For a bundle both low means "some may hit": descend.
 //!
 //! Both testers carry their own valid and tag; the outputs take the AllHit side's and the AnyHit side's
 //! AND (they are equal), so that no child output is left unused.
@@ -54,8 +65,10 @@ pub struct BundleFix<const G: usize, const V: usize, const D: usize, const T: us
     pub t_lo: Signal<In, Bits<T>>,
     pub t_hi: Signal<In, Bits<T>>,
     pub two_rays: Signal<In, Bit>,
-    pub r_o: [Signal<In, Bits<G>>; 3],
-    pub r_d: [Signal<In, Bits<D>>; 3],
+    pub r_o_lo: [Signal<In, Bits<G>>; 3],
+    pub r_o_hi: [Signal<In, Bits<G>>; 3],
+    pub r_d_lo: [Signal<In, Bits<D>>; 3],
+    pub r_d_hi: [Signal<In, Bits<D>>; 3],
     pub r_t: Signal<In, Bits<T>>,
     pub in_lo: [Signal<In, Bits<G>>; 3],
     pub in_hi: [Signal<In, Bits<G>>; 3],
@@ -83,8 +96,10 @@ impl<const G: usize, const V: usize, const D: usize, const T: usize> BundleFix<G
             t_lo: Default::default(),
             t_hi: Default::default(),
             two_rays: Default::default(),
-            r_o: Default::default(),
-            r_d: Default::default(),
+            r_o_lo: Default::default(),
+            r_o_hi: Default::default(),
+            r_d_lo: Default::default(),
+            r_d_hi: Default::default(),
             r_t: Default::default(),
             in_lo: Default::default(),
             in_hi: Default::default(),
@@ -111,19 +126,24 @@ impl<const G: usize, const V: usize, const D: usize, const T: usize> Logic
         self.any_hit_test.valid_in.next = self.valid_in.val();
         self.all_hit_test.tag_in.next = self.tag_in.val();
         self.any_hit_test.tag_in.next = self.tag_in.val();
+        // Two-ray mode: AnyHit bounds on the outer box with t_hi on both sides.
+        self.all_hit_test.any_mode.next = self.two_rays.val();
+        self.any_hit_test.any_mode.next = false;
         for i in 0..3 {
             self.all_hit_test.o_lo[i].next = self.o_lo[i].val();
             self.all_hit_test.o_hi[i].next = self.o_hi[i].val();
             self.all_hit_test.d_lo[i].next = self.d_lo[i].val();
             self.all_hit_test.d_hi[i].next = self.d_hi[i].val();
-            self.all_hit_test.box_lo[i].next = self.in_lo[i].val();
-            self.all_hit_test.box_hi[i].next = self.in_hi[i].val();
             if self.two_rays.val() {
-                self.any_hit_test.o_lo[i].next = self.r_o[i].val();
-                self.any_hit_test.o_hi[i].next = self.r_o[i].val();
-                self.any_hit_test.d_lo[i].next = self.r_d[i].val();
-                self.any_hit_test.d_hi[i].next = self.r_d[i].val();
+                self.all_hit_test.box_lo[i].next = self.out_lo[i].val();
+                self.all_hit_test.box_hi[i].next = self.out_hi[i].val();
+                self.any_hit_test.o_lo[i].next = self.r_o_lo[i].val();
+                self.any_hit_test.o_hi[i].next = self.r_o_hi[i].val();
+                self.any_hit_test.d_lo[i].next = self.r_d_lo[i].val();
+                self.any_hit_test.d_hi[i].next = self.r_d_hi[i].val();
             } else {
+                self.all_hit_test.box_lo[i].next = self.in_lo[i].val();
+                self.all_hit_test.box_hi[i].next = self.in_hi[i].val();
                 self.any_hit_test.o_lo[i].next = self.o_lo[i].val();
                 self.any_hit_test.o_hi[i].next = self.o_hi[i].val();
                 self.any_hit_test.d_lo[i].next = self.d_lo[i].val();
@@ -132,10 +152,11 @@ impl<const G: usize, const V: usize, const D: usize, const T: usize> Logic
             self.any_hit_test.box_lo[i].next = self.out_lo[i].val();
             self.any_hit_test.box_hi[i].next = self.out_hi[i].val();
         }
-        self.all_hit_test.t_max.next = self.t_lo.val();
         if self.two_rays.val() {
+            self.all_hit_test.t_max.next = self.t_hi.val();
             self.any_hit_test.t_max.next = self.r_t.val();
         } else {
+            self.all_hit_test.t_max.next = self.t_lo.val();
             self.any_hit_test.t_max.next = self.t_hi.val();
         }
         self.valid_out.next = self.all_hit_test.valid_out.val() & self.any_hit_test.valid_out.val();
@@ -150,7 +171,9 @@ impl<const G: usize, const V: usize, const D: usize, const T: usize> Logic
 pub enum PairInput {
     /// One bundle, judged by both testers.
     Bundle(FixBundle),
-    /// Two single rays as point bundles (`lo = hi`): A to AllHit, B to AnyHit (its `lo` ends are used).
+    /// Two single rays, each quantised as a tiny bundle (`quantize_bundle` of `Bundle::of_ray`; a point
+    /// bundle for a ray on the grid): A on the AllHit tester, B on the AnyHit tester, both with AnyHit
+    /// bounds on the outer box and their `t_hi` (their `t_lo` is not used).
     TwoRays(FixBundle, FixBundle),
 }
 
@@ -163,14 +186,20 @@ impl PairInput {
         }
     }
 
-    /// The bit-accurate model: `(all_hit_fix` of the AllHit side on the inner box,
-    /// `all_miss_fix` of the AnyHit side on the outer box`)`.
+    /// The bit-accurate model, `(all_hit, all_miss)`: for a bundle `(all_hit_fix` on the inner box,
+    /// `all_miss_fix` on the outer box`)`; for two rays `(!all_miss_fix(A)`, `all_miss_fix(B))`, both on
+    /// the outer box ("A may hit", "B misses").
     pub fn model(&self, bf: &BundleFixFormat, boxes: &BoxPair<FixBox>) -> (bool, bool) {
-        let (a, b) = self.sides();
-        (
-            all_hit_fix(bf, a, &boxes.inner),
-            all_miss_fix(bf, b, &boxes.outer),
-        )
+        match self {
+            PairInput::Bundle(b) => (
+                all_hit_fix(bf, b, &boxes.inner),
+                all_miss_fix(bf, b, &boxes.outer),
+            ),
+            PairInput::TwoRays(a, b) => (
+                !all_miss_fix(bf, a, &boxes.outer),
+                all_miss_fix(bf, b, &boxes.outer),
+            ),
+        }
     }
 }
 
@@ -217,10 +246,12 @@ impl<const G: usize, const V: usize, const D: usize, const T: usize> SlabIo
                     self.in_hi[a].next = bits::<G>(code(p.inner.hi[a], G));
                     self.out_lo[a].next = bits::<G>(code(p.outer.lo[a], G));
                     self.out_hi[a].next = bits::<G>(code(p.outer.hi[a], G));
-                    self.r_o[a].next = bits::<G>(code(r.o_lo[a], G));
-                    self.r_d[a].next = bits::<D>(code(r.d_lo[a], D));
+                    self.r_o_lo[a].next = bits::<G>(code(r.o_lo[a], G));
+                    self.r_o_hi[a].next = bits::<G>(code(r.o_hi[a], G));
+                    self.r_d_lo[a].next = bits::<D>(code(r.d_lo[a], D));
+                    self.r_d_hi[a].next = bits::<D>(code(r.d_hi[a], D));
                 }
-                self.r_t.next = bits::<T>(code(r.t_lo, T));
+                self.r_t.next = bits::<T>(code(r.t_hi, T));
                 self.t_lo.next = bits::<T>(code(b.t_lo, T));
                 self.t_hi.next = bits::<T>(code(b.t_hi, T));
             }

@@ -1,11 +1,13 @@
 //! `BundleTest`: one of the pair of fixed-point bundle testers, AllHit or AnyHit (a constructor
 //! argument: the two share this structure and differ only in which bounds they take), fully pipelined
-//! (one test per clock), [`BUNDLE_TEST_LATENCY`] clocks of latency.
+//! (one test per clock), [`BUNDLE_TEST_LATENCY`] clocks of latency. The AllHit tester can be switched to
+//! AnyHit bounds test by test (`any_mode`): in two-ray mode the pair runs AnyHit on both testers.
 //!
 //! Bit for bit `golden::bundle::conditions_hold` in `golden::bundle_fix::FixArith` with `t_min = 0`:
-//! [`BundleTest::all_hit`] computes `golden::bundle_fix::all_hit_fix` on the inner box and `t_lo`,
-//! [`BundleTest::any_hit`] computes `!golden::bundle_fix::all_miss_fix` on the outer box and `t_hi`
-//! (`pass` low means every ray of the bundle misses). Read `golden/src/bundle.rs` for the conditions and
+//! [`BundleTest::all_hit`] computes `golden::bundle_fix::all_hit_fix` on the inner box and `t_lo`
+//! (with `any_mode` high, what the AnyHit tester computes), [`BundleTest::any_hit`] computes
+//! `!golden::bundle_fix::all_miss_fix` on the outer box and `t_hi` (`pass` low means every ray of the
+//! bundle misses). Read `golden/src/bundle.rs` for the conditions and
 //! their proofs; [`crate::bundle_fix::BundleFix`] pairs the two on one bundle.
 //!
 //! # Parameters
@@ -23,7 +25,11 @@
 //! - `clock`; `valid_in`, `tag_in` (16 bits, opaque, returned with the result);
 //! - `o_lo`, `o_hi`, `d_lo`, `d_hi` (arrays over x, y, z) and `t_max`: the bundle, fields of
 //!   `golden::bundle_fix::FixBundle` (`t_max` is its `t_lo` for AllHit, `t_hi` for AnyHit);
-//! - `box_lo`, `box_hi`: the box (`inner` for AllHit, `outer` for AnyHit).
+//! - `box_lo`, `box_hi`: the box (`inner` for AllHit, `outer` for AnyHit);
+//! - `any_mode`: AnyHit bounds for this test even in the AllHit tester. The mode of a test is AllHit
+//!   exactly when the constructor chose AllHit and `any_mode` is low; it is registered with the test
+//!   (`sure_q1`) and used in stages 1 and 2, so the bit may change every clock. The AnyHit tester
+//!   ignores it.
 //!
 //! Input contract (what the quantisers produce): direction codes of magnitude at most `2^(D-2)` (so that
 //! `-d` fits `D` bits). Every other code is taken as it comes.
@@ -70,6 +76,8 @@ pub struct BundleTest<const G: usize, const V: usize, const D: usize, const T: u
     pub t_max: Signal<In, Bits<T>>,
     pub box_lo: [Signal<In, Bits<G>>; 3],
     pub box_hi: [Signal<In, Bits<G>>; 3],
+    /// 1: AnyHit bounds whatever the constructor chose (the AllHit tester judging one ray in two-ray mode).
+    pub any_mode: Signal<In, Bit>,
     pub valid_out: Signal<Out, Bit>,
     pub tag_out: Signal<Out, Bits<TAG_BITS>>,
     pub pass: Signal<Out, Bit>,
@@ -81,6 +89,9 @@ pub struct BundleTest<const G: usize, const V: usize, const D: usize, const T: u
     sign_t: Constant<Bits<T>>,
     zero_d: Constant<Bits<D>>,
     // stage 1
+    /// `sure & !any_mode`: the mode of this test, carried with it to stage 2.
+    sure_eff: Signal<Local, Bit>,
+    sure_q1: DFF<Bit>,
     diff: [FoldDiff<G, V>; 3],
     nd_lo: [Signal<Local, Bits<D>>; 3],
     nd_hi: [Signal<Local, Bits<D>>; 3],
@@ -147,6 +158,7 @@ impl<const G: usize, const V: usize, const D: usize, const T: usize> BundleTest<
             t_max: Default::default(),
             box_lo: Default::default(),
             box_hi: Default::default(),
+            any_mode: Default::default(),
             valid_out: Default::default(),
             tag_out: Default::default(),
             pass: Default::default(),
@@ -155,6 +167,8 @@ impl<const G: usize, const V: usize, const D: usize, const T: usize> BundleTest<
             sign_d: Constant::new(bits::<D>(1 << (D - 1))),
             sign_t: Constant::new(bits::<T>(1 << (T - 1))),
             zero_d: Constant::new(bits::<D>(0)),
+            sure_eff: Default::default(),
+            sure_q1: Default::default(),
             diff: Default::default(),
             nd_lo: Default::default(),
             nd_hi: Default::default(),
@@ -225,17 +239,21 @@ impl<const G: usize, const V: usize, const D: usize, const T: usize> Logic
             self.mx_q2[k].clock.next = self.clock.val();
         }
         dff_setup!(
-            self, clock, t_q1, empty_q1, valid_q1, tag_q1, t_q2, ok_q2, valid_q2, tag_q2, pass_q3,
-            valid_q3, tag_q3
+            self, clock, t_q1, empty_q1, valid_q1, tag_q1, sure_q1, t_q2, ok_q2, valid_q2, tag_q2,
+            pass_q3, valid_q3, tag_q3
         );
 
-        // Stage 1: both folds of every axis, the fold picked by the sign class of the direction.
+        // Stage 1: both folds of every axis, the fold picked by the sign class of the direction. The
+        // effective mode: AllHit bounds only for the AllHit tester and `any_mode` low.
+        self.sure_eff.next = self.sure.val() & !self.any_mode.val();
         self.empty.next = false;
         for i in 0..3 {
             self.diff[i].lo.next = self.box_lo[i].val();
             self.diff[i].hi.next = self.box_hi[i].val();
-            // e largest and x smallest for AllHit, the reverse for AnyHit.
-            if self.sure.val() {
+            // e largest and x smallest for AllHit, the reverse for AnyHit. (The mode is spelled out
+            // from the port here, not read from `sure_eff`: a child input computed from a local of this
+            // block makes Verilator see a combinational loop through the child, UNOPTFLAT.)
+            if self.sure.val() & !self.any_mode.val() {
                 self.diff[i].o_e.next = self.o_lo[i].val();
                 self.diff[i].o_x.next = self.o_hi[i].val();
             } else {
@@ -253,12 +271,12 @@ impl<const G: usize, const V: usize, const D: usize, const T: usize> Logic
                 <= (self.diff[i].e_neg.val() ^ self.sign_v.val());
             self.x_le[i].next = (self.diff[i].x_pos.val() ^ self.sign_v.val())
                 <= (self.diff[i].x_neg.val() ^ self.sign_v.val());
-            if self.e_le[i].val() == self.sure.val() {
+            if self.e_le[i].val() == self.sure_eff.val() {
                 self.e_pick[i].next = self.diff[i].e_neg.val();
             } else {
                 self.e_pick[i].next = self.diff[i].e_pos.val();
             }
-            if self.x_le[i].val() != self.sure.val() {
+            if self.x_le[i].val() != self.sure_eff.val() {
                 self.x_pick[i].next = self.diff[i].x_neg.val();
             } else {
                 self.x_pick[i].next = self.diff[i].x_pos.val();
@@ -280,13 +298,13 @@ impl<const G: usize, const V: usize, const D: usize, const T: usize> Logic
                 self.x_q1[i].d.next = self.diff[i].x_neg.val();
                 self.ulo_q1[i].d.next = self.nd_hi[i].val();
                 self.uhi_q1[i].d.next = self.nd_lo[i].val();
-            } else if !self.sure.val() & (self.diff[i].x_pos.val() >= self.sign_v.val()) {
+            } else if !self.sure_eff.val() & (self.diff[i].x_pos.val() >= self.sign_v.val()) {
                 // AnyHit, straddling, no ray moving up reaches the far plane: keep the lower half.
                 self.e_q1[i].d.next = self.diff[i].e_neg.val();
                 self.x_q1[i].d.next = self.diff[i].x_neg.val();
                 self.ulo_q1[i].d.next = self.zero_d.val();
                 self.uhi_q1[i].d.next = self.nd_lo[i].val();
-            } else if !self.sure.val() & (self.diff[i].x_neg.val() >= self.sign_v.val()) {
+            } else if !self.sure_eff.val() & (self.diff[i].x_neg.val() >= self.sign_v.val()) {
                 // AnyHit, straddling, the mirror case: keep the upper half.
                 self.e_q1[i].d.next = self.diff[i].e_pos.val();
                 self.x_q1[i].d.next = self.diff[i].x_pos.val();
@@ -303,6 +321,7 @@ impl<const G: usize, const V: usize, const D: usize, const T: usize> Logic
         self.empty_q1.d.next = self.empty.val();
         self.valid_q1.d.next = self.valid_in.val();
         self.tag_q1.d.next = self.tag_in.val();
+        self.sure_q1.d.next = self.sure_eff.val();
 
         // Stage 2: the bound of each product. An upper bound of v * u takes u_hi for v >= 0 and u_lo for
         // v < 0, a lower bound the reverse; e-products are upper bounds for AllHit, x- and t-products
@@ -310,12 +329,14 @@ impl<const G: usize, const V: usize, const D: usize, const T: usize> Logic
         self.ok.next = !self.empty_q1.q.val();
         self.t_neg.next = self.t_q1.q.val() >= self.sign_t.val();
         for i in 0..3 {
-            self.e_lo_sel[i].next = (self.e_q1[i].q.val() >= self.sign_v.val()) == self.sure.val();
-            self.x_lo_sel[i].next = (self.x_q1[i].q.val() >= self.sign_v.val()) != self.sure.val();
+            self.e_lo_sel[i].next =
+                (self.e_q1[i].q.val() >= self.sign_v.val()) == self.sure_q1.q.val();
+            self.x_lo_sel[i].next =
+                (self.x_q1[i].q.val() >= self.sign_v.val()) != self.sure_q1.q.val();
             if self.x_q1[i].q.val() >= self.sign_v.val() {
                 self.ok.next = false; // D: the far plane is behind
             }
-            if self.t_neg.val() != self.sure.val() {
+            if self.t_neg.val() != self.sure_q1.q.val() {
                 self.mt_q2[i].d.next = self.ulo_q1[i].q.val();
             } else {
                 self.mt_q2[i].d.next = self.uhi_q1[i].q.val();

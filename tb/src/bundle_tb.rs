@@ -1,7 +1,7 @@
 //! Testbench glue of the fixed-point bundle pair ([`rtl::bundle_fix::BundleFix`]): the model as the
-//! testbench sees it, vector streams (BundleGen bundles, on-grid single rays, two-ray inputs and raw
-//! codes, with bubbles), port encoding, and the cross-simulation loop that checks Verilator against the rust-hdl
-//! simulation and the model.
+//! testbench sees it, vector streams (BundleGen bundles, on-grid single rays, two-ray inputs of on-grid
+//! and off-grid quantised rays, and raw codes, with bubbles), port encoding, and the cross-simulation
+//! loop that checks Verilator against the rust-hdl simulation and the model.
 //!
 //! The slab testers' loop ([`crate::slab_tb::xsim`]) is written around `hit`, `t_entry`, `t_exit`; this
 //! one compares whole output records instead (every output port of a valid cycle, `valid_out` of every
@@ -12,10 +12,11 @@ use crate::dut::PipelinedDut;
 use crate::rtl_sim::SlabRtl;
 use crate::slab_tb::{replay_vcd, XsimStats, XSIM_VCD_WINDOW};
 use crate::verilator::Harness;
-use golden::bundle::BoxPair;
+use golden::bundle::{BoxPair, Bundle};
 use golden::bundle_fix::{quantize_box_pair, quantize_bundle, BundleFixFormat, FixBundle};
-use golden::bundle_gen::BundleGen;
-use golden::fixed::FixBox;
+use golden::bundle_gen::{BundleCase, BundleGen};
+use golden::fixed::{FixBox, GridMap};
+use golden::geom::Ray;
 use rand::{Rng, SeedableRng};
 use rand_pcg::Pcg64;
 use rtl::bundle_fix::{BundleFixIo, PairInput};
@@ -73,17 +74,74 @@ pub fn raw_bundle(bf: &BundleFixFormat, rng: &mut Pcg64) -> BundleVec {
         b.d_hi[a] = if rng.gen() { b.d_lo[a] } else { d(rng) };
     }
     let outer = if rng.gen() { inner } else { outer };
-    let input = match rng.gen_range(0..4) {
+    // Two rays: raw tiny bundles (any codes) or raw points.
+    let input = match rng.gen_range(0..8) {
         0 => PairInput::TwoRays(point_of(&b), point_of(raw_bundle(bf, rng).0.sides().0)),
+        1 => PairInput::TwoRays(b, *raw_bundle(bf, rng).0.sides().1),
         _ => PairInput::Bundle(b),
     };
     (input, BoxPair { inner, outer })
 }
 
+/// A world ray quantised for the pair: the tiny bundle `quantize_bundle(Bundle::of_ray(ray))` (a point
+/// bundle when every input of the ray is on the grid); `None` when it does not fit the grid.
+pub fn quantised_ray(bf: &BundleFixFormat, map: &GridMap, ray: &Ray) -> Option<FixBundle> {
+    quantize_bundle(bf, map, &Bundle::of_ray(ray).ok()?).ok()
+}
+
+/// A BundleGen case quantised for the pair: the bundle, the box pair and every listed ray of the case
+/// (each as [`quantised_ray`]; `None` when the bundle, the box or a ray does not fit the grid).
+pub fn quantised_case(
+    bf: &BundleFixFormat,
+    map: &GridMap,
+    c: &BundleCase,
+) -> Option<(FixBundle, BoxPair<FixBox>, Vec<FixBundle>)> {
+    let b = quantize_bundle(bf, map, &c.bundle).ok()?;
+    let p = quantize_box_pair(map, &c.bounds).ok()?;
+    let rays = c
+        .rays
+        .iter()
+        .map(|r| quantised_ray(bf, map, r))
+        .collect::<Option<Vec<_>>>()?;
+    Some((b, p, rays))
+}
+
+/// A two-ray test drawn from `gen`: ray A from a case (half the time an on-grid single ray, else one of
+/// the listed rays of a BundleGen case, off the grid and so a tiny bundle), judged against that case's
+/// box; ray B the same ray (one time in eight), another ray of the same case, or a ray of another case.
+pub fn two_ray_vec(
+    bf: &BundleFixFormat,
+    map: &GridMap,
+    gen: &mut BundleGen,
+    rng: &mut Pcg64,
+) -> BundleVec {
+    let draw = |gen: &mut BundleGen, rng: &mut Pcg64| loop {
+        let c = if rng.gen() {
+            gen.grid_one_ray(map)
+        } else {
+            gen.next_case()
+        };
+        if let Some((_, p, rays)) = quantised_case(bf, map, &c) {
+            break (p, rays);
+        }
+    };
+    let (p, rays) = draw(gen, rng);
+    let a = rays[rng.gen_range(0..rays.len())];
+    let b = match rng.gen_range(0..8) {
+        0 => a,
+        1..=4 => rays[rng.gen_range(0..rays.len())],
+        _ => {
+            let other = draw(gen, rng).1;
+            other[rng.gen_range(0..other.len())]
+        }
+    };
+    (PairInput::TwoRays(a, b), p)
+}
+
 /// `n` pipeline tests for the preset `bf`, seeded: BundleGen cases (60% adversarial) quantised on the
-/// campaign grid, one in eight an on-grid single ray, one in eight two on-grid rays (the second judged
-/// against the first one's box; one time in four the same ray twice) and one in eight [`raw_bundle`];
-/// when `bubbles`, about one cycle in eight is a bubble.
+/// campaign grid, one in eight an on-grid single ray, one in eight a [`two_ray_vec`] (on-grid and
+/// off-grid quantised rays) and one in eight [`raw_bundle`]; when `bubbles`, about one cycle in eight is
+/// a bubble.
 pub fn bundle_vectors(
     bf: BundleFixFormat,
     seed: u64,
@@ -119,15 +177,7 @@ pub fn bundle_vectors(
         };
         Some(Some(match rng.gen_range(0..8) {
             0 => raw_bundle(&bf, &mut rng),
-            1 => {
-                let (a, p) = quantised(&mut gen, true);
-                let b = if rng.gen_ratio(1, 4) {
-                    a
-                } else {
-                    quantised(&mut gen, true).0
-                };
-                (PairInput::TwoRays(a, b), p)
-            }
+            1 => two_ray_vec(&bf, &map, &mut gen, &mut rng),
             k => {
                 let (b, p) = quantised(&mut gen, k == 2);
                 (PairInput::Bundle(b), p)
@@ -171,9 +221,11 @@ pub fn bundle_in_word(
         "t_lo" => code(b.t_lo, t),
         "t_hi" => code(b.t_hi, t),
         "two_rays" => matches!(input, PairInput::TwoRays(..)) as u64,
-        "r_o" => code(r.o_lo[idx], g),
-        "r_d" => code(r.d_lo[idx], d),
-        "r_t" => code(r.t_lo, t),
+        "r_o_lo" => code(r.o_lo[idx], g),
+        "r_o_hi" => code(r.o_hi[idx], g),
+        "r_d_lo" => code(r.d_lo[idx], d),
+        "r_d_hi" => code(r.d_hi[idx], d),
+        "r_t" => code(r.t_hi, t),
         "in_lo" => code(p.inner.lo[idx], g),
         "in_hi" => code(p.inner.hi[idx], g),
         "out_lo" => code(p.outer.lo[idx], g),

@@ -1,17 +1,24 @@
 //! The fixed-point bundle pair (AllHit + AnyHit, `rtl::bundle_fix::BundleFix`): rust-hdl simulation bit
 //! for bit against `golden::bundle_fix::{all_hit_fix, all_miss_fix}` on BundleGen bundles (random and
-//! adversarial), on-grid single rays, two-ray inputs and raw codes, with bubbles, for every preset (results, tag order,
-//! latency); a wrong model is caught; the waveform's latency; the exported Verilog (Verilator lint,
+//! adversarial), on-grid single rays, two-ray inputs (on-grid and off-grid quantised rays) and raw codes,
+//! with bubbles, for every preset (results, tag order, latency); a wrong model is caught; two-ray mode
+//! never calls a hitting ray a miss (exact oracle); the waveform's latency; the exported Verilog (Verilator lint,
 //! Icarus, Verilator cross-simulation against the rust-hdl simulation and the model). Each test prints
 //! its counts and time (run with `--nocapture`).
 
+use golden::bundle::ray_hits_exact;
 use golden::bundle_fix::{
     all_hit_fix, all_miss_fix, quantize_box_pair, quantize_bundle, BundleFixFormat, FixBundle,
 };
 use golden::bundle_gen::BundleGen;
+use golden::exact::slab_exact;
+use rand::{Rng, SeedableRng};
+use rand_pcg::Pcg64;
 use rtl::bundle_fix::{BundleFixIo, PairInput, BUNDLE_FIX_LATENCY};
 use std::time::Instant;
-use tb::bundle_tb::{bundle_model, bundle_rtl, bundle_vectors, bundle_xsim, BundleVec};
+use tb::bundle_tb::{
+    bundle_model, bundle_rtl, bundle_vectors, bundle_xsim, quantised_case, BundleVec,
+};
 use tb::campaign::{campaign_bounds, campaign_map};
 use tb::dut::run_checked;
 use tb::vcd_read::read_trace;
@@ -89,11 +96,11 @@ fn a_wrong_model_is_caught() {
     println!("caught: {err}");
 }
 
-/// Two copies of one on-grid ray, one per tester, get one answer: AllHit says "hits" exactly when AnyHit
-/// says "does not miss" (a one-ray bundle with inputs on the grid is decided exactly by both tests), and
-/// the RTL gives it bit for bit.
+/// An on-grid ray is a point bundle, decided exactly by both tests: as a bundle, AllHit says "hits"
+/// exactly when AnyHit says "does not miss"; in two-ray mode (the same ray on both testers) the pair gives
+/// the same two answers. The RTL gives both bit for bit.
 #[test]
-fn one_ray_on_both_testers_gets_one_answer() {
+fn one_on_grid_ray_gets_one_answer_in_both_modes() {
     let bf = preset(1);
     let map = campaign_map(bf.base);
     let (lo, hi) = campaign_bounds();
@@ -106,23 +113,120 @@ fn one_ray_on_both_testers_gets_one_answer() {
             quantize_box_pair(&map, &c.bounds),
         ) {
             assert_eq!(p.inner, p.outer, "an on-grid box needs no rounding");
+            assert_eq!(
+                (b.o_lo, b.d_lo, b.t_lo),
+                (b.o_hi, b.d_hi, b.t_hi),
+                "a point bundle"
+            );
+            tests.push(Some((PairInput::Bundle(b), p)));
             tests.push(Some((PairInput::TwoRays(b, b), p)));
         }
     }
     let mut hits = 0;
-    for (input, p) in tests.iter().flatten() {
-        let (all_hit, all_miss) = input.model(&bf, p);
-        assert_eq!(all_hit, !all_miss, "{input:?} {p:?}");
+    for pair in tests.chunks(2) {
+        let (Some((bundle, p)), Some((two, _))) = (&pair[0], &pair[1]) else {
+            unreachable!()
+        };
+        let (all_hit, all_miss) = bundle.model(&bf, p);
+        assert_eq!(all_hit, !all_miss, "{bundle:?} {p:?}");
+        assert_eq!(two.model(&bf, p), (all_hit, all_miss), "{two:?} {p:?}");
         hits += all_hit as usize;
     }
-    assert!(
-        hits > 100 && hits < tests.len() - 100,
-        "degenerate: {hits} hits"
-    );
+    let rays = tests.len() / 2;
+    assert!(hits > 100 && hits < rays - 100, "degenerate: {hits} hits");
     let mut dut = bundle_rtl::<rtl::BundleFixB12>(&bf);
     let n =
         run_checked(&mut dut, tests, |v| bundle_model(&bf, v)).unwrap_or_else(|e| panic!("{e}"));
-    println!("{n} single rays, {hits} hits, decided alike by both testers");
+    println!(
+        "{rays} single rays ({n} tests), {hits} hits, decided alike by both tests and both modes"
+    );
+}
+
+/// Two-ray mode is sound for rays off the grid: over world rays (on-grid single rays and the listed rays
+/// of BundleGen cases, random and adversarial) each quantised to its tiny bundle and paired with the next
+/// ray of its case (ray `k` is A in one test and B in another), the pair never says "misses" (`!all_hit`
+/// for ray A, `all_miss` for ray B) of a ray that truly hits its case's box (the exact oracle
+/// `golden::bundle::ray_hits_exact`, checked against `golden::exact::slab_exact`). The RTL runs the same
+/// tests against the model, so the claim holds for the RTL too. AllHit bounds on the tiny bundle (ray A
+/// in the old two-ray mode) drop hits, and their count shows the check has teeth.
+#[test]
+fn two_ray_mode_never_misses_a_hitting_ray() {
+    fn run<S: BundleFixIo>(bf: BundleFixFormat, seed: u64) {
+        let start = Instant::now();
+        let map = campaign_map(bf.base);
+        let (lo, hi) = campaign_bounds();
+        let mut gen = BundleGen::new(seed, lo, hi, 0.6);
+        let mut rng = Pcg64::seed_from_u64(seed);
+        let (mut hits, mut off_grid, mut old_false_misses) = (0, 0, 0);
+        let mut tests: Vec<Option<BundleVec>> = vec![];
+        while tests.len() < 12_000 {
+            let c = if rng.gen_ratio(1, 4) {
+                gen.grid_one_ray(&map)
+            } else {
+                gen.next_case()
+            };
+            let Some((_, p, q)) = quantised_case(&bf, &map, &c) else {
+                continue;
+            };
+            let hit: Vec<bool> = c
+                .rays
+                .iter()
+                .map(|r| {
+                    let h = ray_hits_exact(r, &c.bounds).unwrap();
+                    assert_eq!(h, slab_exact(r, &c.bounds).hit, "{r:?} {:?}", c.bounds);
+                    h
+                })
+                .collect();
+            for k in 0..q.len() {
+                let j = (k + 1) % q.len();
+                let input = PairInput::TwoRays(q[k], q[j]);
+                let (a_may_hit, b_misses) = input.model(&bf, &p);
+                for (ray, sound) in [(k, a_may_hit), (j, !b_misses)] {
+                    assert!(
+                        !hit[ray] || sound,
+                        "{}: two-ray mode says a hitting ray misses ({} side)\n  ray {:?}\n  box {:?}\n  \
+                         quantised {:?}\n  boxes {p:?}",
+                        bf.name(),
+                        if ray == k { "A" } else { "B" },
+                        c.rays[ray],
+                        c.bounds,
+                        q[ray]
+                    );
+                }
+                let a = &q[k];
+                if hit[k] {
+                    hits += 1;
+                    old_false_misses += !all_hit_fix(&bf, a, &p.inner) as usize;
+                }
+                off_grid += (a.o_lo != a.o_hi || a.d_lo != a.d_hi || a.t_lo != a.t_hi) as usize;
+                tests.push(Some((input, p)));
+            }
+        }
+        let rays = tests.len();
+        assert!(
+            hits > rays / 10 && off_grid > rays / 4,
+            "{}: degenerate: {hits} hits, {off_grid} off the grid of {rays}",
+            bf.name()
+        );
+        assert!(
+            old_false_misses > 0,
+            "{}: AllHit bounds dropped no hit",
+            bf.name()
+        );
+        let mut dut = bundle_rtl::<S>(&bf);
+        let n = run_checked(&mut dut, tests, |v| bundle_model(&bf, v))
+            .unwrap_or_else(|e| panic!("{}: {e}", bf.name()));
+        assert_eq!(n, rays);
+        println!(
+            "{}: {rays} rays ({hits} hit, {off_grid} off the grid): no hit called a miss, RTL = model; \
+             AllHit bounds would drop {old_false_misses} ({:.1} s)",
+            bf.name(),
+            start.elapsed().as_secs_f64()
+        );
+    }
+    run::<rtl::BundleFixB8>(preset(0), 20);
+    run::<rtl::BundleFixB12>(preset(1), 21);
+    run::<rtl::BundleFixB16>(preset(2), 22);
 }
 
 #[test]
