@@ -8,6 +8,7 @@
 //! | exact oracle (rationals) | [`exact`] | [`plane`] | [`bundle`] | the truth |
 //! | bit-accurate fixed point | [`slab_fix`] | [`plane_fix`] | [`bundle_fix`] | native stand-in for the RTL, bit for bit |
 //! | bit-accurate float | [`slab_float`] | [`plane_float`] | [`bundle_float`] | the same |
+//! | results processor (bit-accurate) | | | [`bundle_split`] | a bundle job: the bundle test, then its rays two per clock |
 //!
 //! Scenes, BVH, plane generation and traversal for the scene measurements: [`scene`], [`bvh`],
 //! [`planegen`], [`traverse`], [`tri`]; bundles on scenes: [`bundle_build`] (the builder and splitting
@@ -24,6 +25,7 @@ pub mod bundle_check;
 pub mod bundle_fix;
 pub mod bundle_float;
 pub mod bundle_gen;
+pub mod bundle_split;
 pub mod bundle_trav;
 pub mod bundle_vectors;
 pub mod check;
