@@ -80,6 +80,10 @@ pub fn export_all(dir: &Path) -> std::io::Result<Vec<PathBuf>> {
     for (module, v, lat) in plane_verilog() {
         write(module, v, lat)?;
     }
+    // The bundle results processor over b12 and b16 (latency: clocks of a decided job).
+    for (module, v, lat) in crate::bundle_split::bundle_split_verilog() {
+        write(module, v, lat)?;
+    }
     std::fs::write(dir.join("latency.csv"), latency)?;
     Ok(out)
 }

@@ -182,3 +182,12 @@ pub type BundleFixB8 = bundle_fix::BundleFix<8, 9, 9, 14>;
 pub type BundleFixB12 = bundle_fix::BundleFix<12, 13, 13, 20>;
 /// The same over b16 (`FD = 14`).
 pub type BundleFixB16 = bundle_fix::BundleFix<16, 17, 17, 24>;
+
+pub mod bundle_split;
+
+/// The bundle results processor ([`bundle_split::BundleSplit`], 16 rays) over b8 (`FD = 6`).
+pub type BundleSplitB8 = bundle_split::BundleSplit<8, 9, 9, 14>;
+/// The same over b12 (`FD = 10`).
+pub type BundleSplitB12 = bundle_split::BundleSplit<12, 13, 13, 20>;
+/// The same over b16 (`FD = 14`).
+pub type BundleSplitB16 = bundle_split::BundleSplit<16, 17, 17, 24>;

@@ -37,3 +37,4 @@ pub fn out_dir() -> std::path::PathBuf {
     }
 }
 pub mod bundle_tb;
+pub mod bundle_split_tb;
