@@ -84,6 +84,13 @@ pub fn export_all(dir: &Path) -> std::io::Result<Vec<PathBuf>> {
     for (module, v, lat) in crate::bundle_split::bundle_split_verilog() {
         write(module, v, lat)?;
     }
+    for f in crate::BUNDLE_FLOAT_FORMATS {
+        write(
+            crate::bundle_float::bundle_float_module(&f),
+            crate::bundle_float::bundle_float_verilog(&f).expect("instantiated"),
+            crate::bundle_float::BUNDLE_FLOAT_LATENCY,
+        )?;
+    }
     std::fs::write(dir.join("latency.csv"), latency)?;
     Ok(out)
 }

@@ -183,6 +183,23 @@ pub type BundleFixB12 = bundle_fix::BundleFix<12, 13, 13, 20>;
 /// The same over b16 (`FD = 14`).
 pub type BundleFixB16 = bundle_fix::BundleFix<16, 17, 17, 24>;
 
+pub mod bundle_float;
+pub mod bundle_float_test;
+
+/// The float AllHit + AnyHit bundle pair in binary32.
+pub type BundleFloatFp32 = bundle_float::BundleFloat<8, 23, 32>;
+/// The same in bfloat16.
+pub type BundleFloatBf16 = bundle_float::BundleFloat<8, 7, 16>;
+/// The same in binary16.
+pub type BundleFloatFp16 = bundle_float::BundleFloat<5, 10, 16>;
+
+/// The float formats with an instantiated float bundle pair (`with_bundle_float!`).
+pub const BUNDLE_FLOAT_FORMATS: [golden::float::FloatFormat; 3] = [
+    golden::float::FloatFormat::FP32,
+    golden::float::FloatFormat::BF16,
+    golden::float::FloatFormat::FP16,
+];
+
 pub mod bundle_split;
 
 /// The bundle results processor ([`bundle_split::BundleSplit`], 16 rays) over b8 (`FD = 6`).

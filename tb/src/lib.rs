@@ -12,6 +12,7 @@
 //! | [`strategies`] | proptest strategies over quantised slab vectors |
 //! | [`plane_tb`] | the fixed cull-plane tester's port encoding, vector streams and the cull-plane campaigns |
 //! | [`plane_float_tb`] | the float cull-plane tester's port encoding and vector streams |
+//! | [`bundle_float_tb`] | the float bundle pair's vector streams, port encoding and cross-simulation loop |
 //! | [`slab_tb`] | port encoding and the cross-simulation loop, for both datapaths ([`slab_tb::SlabCtx`]) |
 
 pub mod campaign;
@@ -36,5 +37,6 @@ pub fn out_dir() -> std::path::PathBuf {
             .join("out"),
     }
 }
-pub mod bundle_tb;
+pub mod bundle_float_tb;
 pub mod bundle_split_tb;
+pub mod bundle_tb;
