@@ -9,6 +9,7 @@ mod chart;
 mod cull_cmd;
 mod float_check;
 mod main_job;
+mod run_bundles;
 mod run_vectors;
 mod scene;
 
@@ -69,6 +70,10 @@ enum Cmd {
         /// Write a waveform of the run here (rtl engine).
         #[arg(long)]
         vcd: Option<PathBuf>,
+        /// The input is bundle vectors (JSON lines: a bundle by its rays or its bounds, and a box) for the
+        /// AllHit / AnyHit pair and the results processor (model engine; rtl engine on b8, b12, b16).
+        #[arg(long)]
+        bundles: bool,
     },
     /// Write generated vectors (uniform, adversarial or mixed) to a file, for `run` or other tools.
     Gen {
@@ -196,6 +201,33 @@ fn main() -> ExitCode {
             planes,
             bounds,
             vcd,
+            bundles: true,
+        } => (|| {
+            if planes.is_some() {
+                return Err("--bundles does not take --planes".to_string());
+            }
+            let grid = bounds
+                .as_deref()
+                .map(run_vectors::parse_bounds)
+                .transpose()?;
+            run_bundles::run(
+                &input,
+                output.as_deref(),
+                engine,
+                &format,
+                grid,
+                vcd.as_deref(),
+            )
+        })(),
+        Cmd::Run {
+            input,
+            output,
+            engine,
+            format,
+            planes,
+            bounds,
+            vcd,
+            bundles: false,
         } => run_vectors::run(
             &input,
             output.as_deref(),

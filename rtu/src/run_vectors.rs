@@ -19,7 +19,7 @@ use tb::plane_float_tb::{float_vector, CullFloatCtx};
 use tb::plane_tb::{fix_vector, CullFixCtx};
 use tb::slab_tb::SlabCtx;
 
-fn parse_bounds(s: &str) -> Result<(DVec3, DVec3), String> {
+pub(crate) fn parse_bounds(s: &str) -> Result<(DVec3, DVec3), String> {
     let v: Vec<f64> = s
         .split(',')
         .map(|x| {
