@@ -279,3 +279,40 @@ impl<const G: usize, const V: usize, const D: usize, const T: usize> SlabIo
         })
     }
 }
+
+/// The module name of the fixed bundle pair for `bf` in exported Verilog.
+pub fn bundle_fix_module(bf: &BundleFixFormat) -> String {
+    format!("bundle_fix_{}", bf.name())
+}
+
+/// `(module, Verilog, latency)` of the fixed bundle pair over the presets b8, b12, b16 (for
+/// `crate::export::export_all`).
+pub fn bundle_fix_verilog() -> Vec<(String, String, usize)> {
+    let [b8, b12, b16] = BundleFixFormat::presets();
+    vec![
+        (
+            bundle_fix_module(&b8),
+            crate::export::verilog_named(
+                &mut crate::BundleFixB8::new(&b8),
+                &bundle_fix_module(&b8),
+            ),
+            BUNDLE_FIX_LATENCY,
+        ),
+        (
+            bundle_fix_module(&b12),
+            crate::export::verilog_named(
+                &mut crate::BundleFixB12::new(&b12),
+                &bundle_fix_module(&b12),
+            ),
+            BUNDLE_FIX_LATENCY,
+        ),
+        (
+            bundle_fix_module(&b16),
+            crate::export::verilog_named(
+                &mut crate::BundleFixB16::new(&b16),
+                &bundle_fix_module(&b16),
+            ),
+            BUNDLE_FIX_LATENCY,
+        ),
+    ]
+}

@@ -80,6 +80,10 @@ pub fn export_all(dir: &Path) -> std::io::Result<Vec<PathBuf>> {
     for (module, v, lat) in plane_verilog() {
         write(module, v, lat)?;
     }
+    // The fixed bundle pair over the presets.
+    for (module, v, lat) in crate::bundle_fix::bundle_fix_verilog() {
+        write(module, v, lat)?;
+    }
     // The bundle results processor over b12 and b16 (latency: clocks of a decided job).
     for (module, v, lat) in crate::bundle_split::bundle_split_verilog() {
         write(module, v, lat)?;

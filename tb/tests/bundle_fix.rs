@@ -250,7 +250,7 @@ fn valid_leaves_latency_clocks_after_it_enters() {
 }
 
 fn module(bf: &BundleFixFormat) -> String {
-    format!("bundle_fix_{}", bf.name())
+    rtl::bundle_fix::bundle_fix_module(bf)
 }
 
 fn export<S: BundleFixIo>(bf: &BundleFixFormat) -> (String, std::path::PathBuf) {
