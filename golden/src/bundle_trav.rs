@@ -19,12 +19,16 @@
 //!
 //! # Cycles
 //! A bundle-box test costs one pair cycle, plus `ceil(|A| / 2)` when it splits; an early split costs
-//! `ceil(|A| / 2)`. Testing the rays one by one costs `|A|` cycles of a single-ray tester (the issue's
-//! yardstick) or `ceil(|A| / 2)` on the pair; [`BundleStats`] keeps both.
+//! `ceil(|A| / 2)` (the results processor's count, [`crate::bundle_split::split_cycles`]). These are cycles
+//! in which the pair is busy: the RTL results processor (`rtl::bundle_split`) runs one job at a time and
+//! waits out the pair's latency, so its clocks per job are more (4 for a decided job); keeping the pair busy
+//! with other jobs meanwhile is not built. Testing the rays one by one costs `|A|` cycles of a single-ray
+//! tester (the yardstick) or `ceil(|A| / 2)` on the pair; [`BundleStats`] keeps both.
 
 use crate::bundle::{decide_exact, Bundle};
 use crate::bundle_build::{Built, SplitMetric};
 use crate::bundle_check::slab_hit;
+use crate::bundle_split::split_cycles;
 use crate::bundle_fix::{decide_fix, BundleFixFormat};
 use crate::bundle_float::decide_float;
 use crate::bvh::{Bvh, NodeKind};
@@ -242,7 +246,8 @@ pub fn traverse_bundle(
         }
         let at = |what: &str| format!("{} at node {node}: {what}", path.name());
         let split = |st: &mut BundleStats| -> Result<u64, Error> {
-            st.pair_cycles += count.div_ceil(2);
+            // The rays' share of a split job's pair cycles (the bundle test's one is counted below).
+            st.pair_cycles += u64::from(split_cycles(true, active) - split_cycles(false, active));
             let mut m = 0u64;
             for (k, &i) in b.rays.iter().enumerate() {
                 if active >> k & 1 == 1 && path.may_hit(&rays[i], bx)? {
@@ -255,7 +260,7 @@ pub fn traverse_bundle(
             st.early_splits += 1;
             split(st)?
         } else {
-            st.pair_cycles += 1;
+            st.pair_cycles += u64::from(split_cycles(false, active));
             let (all_hit, all_miss) = path.decide(&bundle, bx)?;
             if all_hit && all_miss {
                 return Err(Error::Io(at("both \"all hit\" and \"all miss\"")));
