@@ -28,9 +28,9 @@
 use crate::bundle::{decide_exact, Bundle};
 use crate::bundle_build::{Built, SplitMetric};
 use crate::bundle_check::slab_hit;
-use crate::bundle_split::split_cycles;
 use crate::bundle_fix::{decide_fix, BundleFixFormat};
 use crate::bundle_float::decide_float;
+use crate::bundle_split::split_cycles;
 use crate::bvh::{Bvh, NodeKind};
 use crate::error::Error;
 use crate::fixed::GridMap;

@@ -34,7 +34,7 @@ pub struct Args {
     #[arg(long, default_value = "4:0.2,16:0.2,16:0.5")]
     builder: String,
     /// Largest origin spread of a built bundle, as a fraction of the scene's diagonal.
-    #[arg(long, default_value_t = 0.05)]
+    #[arg(long, default_value_t = 0.1)]
     origin_spread: f64,
     /// Open bundles of the builder.
     #[arg(long, default_value_t = 16)]
