@@ -236,17 +236,24 @@ impl Bundle {
                     "a bundle's rays start at their origin (t_min = 0)",
                 ));
             }
-            for a in 0..3 {
-                b.o_lo[a] = b.o_lo[a].min(r.origin[a]);
-                b.o_hi[a] = b.o_hi[a].max(r.origin[a]);
-                b.d_lo[a] = b.d_lo[a].min(r.dir[a]);
-                b.d_hi[a] = b.d_hi[a].max(r.dir[a]);
-            }
-            b.t_lo = b.t_lo.min(r.t_max);
-            b.t_hi = b.t_hi.max(r.t_max);
+            b = b.grown(r);
         }
         b.validate()?;
         Ok(b)
+    }
+
+    /// The smallest bundle holding this one and `r` (no validation).
+    pub fn grown(&self, r: &Ray) -> Self {
+        let mut g = *self;
+        for a in 0..3 {
+            g.o_lo[a] = g.o_lo[a].min(r.origin[a]);
+            g.o_hi[a] = g.o_hi[a].max(r.origin[a]);
+            g.d_lo[a] = g.d_lo[a].min(r.dir[a]);
+            g.d_hi[a] = g.d_hi[a].max(r.dir[a]);
+        }
+        g.t_lo = g.t_lo.min(r.t_max);
+        g.t_hi = g.t_hi.max(r.t_max);
+        g
     }
 
     /// True when `ray` is one of the bundle's rays.

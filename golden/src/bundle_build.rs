@@ -94,19 +94,6 @@ struct Open {
     bundle: Bundle,
 }
 
-fn grown(b: &Bundle, r: &Ray) -> Bundle {
-    let mut g = *b;
-    for a in 0..3 {
-        g.o_lo[a] = g.o_lo[a].min(r.origin[a]);
-        g.o_hi[a] = g.o_hi[a].max(r.origin[a]);
-        g.d_lo[a] = g.d_lo[a].min(r.dir[a]);
-        g.d_hi[a] = g.d_hi[a].max(r.dir[a]);
-    }
-    g.t_lo = g.t_lo.min(r.t_max);
-    g.t_hi = g.t_hi.max(r.t_max);
-    g
-}
-
 /// The origin and direction extents of a bundle, each the largest over the axes.
 pub fn spread(b: &Bundle) -> (f64, f64) {
     (0..3).fold((0.0f64, 0.0f64), |(o, d), a| {
@@ -153,7 +140,7 @@ pub fn build(rays: &[Ray], p: &BuildParams) -> Result<Vec<Built>, Error> {
             .enumerate()
             .filter(|(_, o)| o.rays.len() < p.max_rays)
             .filter_map(|(k, o)| {
-                let g = grown(&o.bundle, r);
+                let g = o.bundle.grown(r);
                 growth(p, &o.bundle, &g).map(|c| (k, c, g))
             })
             // Strictly smaller cost wins, so ties keep the bundle opened first.

@@ -20,7 +20,7 @@ use crate::bundle::Bundle;
 use crate::bundle_build::MAX_BUNDLE_RAYS;
 use crate::error::Error;
 use crate::geom::{Aabb, Ray};
-use crate::vectors::{json_num, line_err, num_text};
+use crate::vectors::{json_num, json_object, line_err, num_text};
 use glam::DVec3;
 use serde_json::{Map, Value};
 use std::io::{BufRead, Write};
@@ -84,22 +84,8 @@ fn relabel<'a>(src: &'a str, line: usize, field: &str) -> impl Fn(Error) -> Erro
 }
 
 fn parse_line(src: &str, line: usize, text: &str, index: u64) -> Result<BundleVector, Error> {
-    let v: Value = serde_json::from_str(text)
-        .map_err(|e| line_err(src, line, "(line)", format!("not JSON: {e}")))?;
-    let obj = v
-        .as_object()
-        .ok_or_else(|| line_err(src, line, "(line)", "expected a JSON object"))?;
-    let tag = match obj.get("tag") {
-        None => index,
-        Some(t) => t.as_u64().ok_or_else(|| {
-            line_err(
-                src,
-                line,
-                "tag",
-                format!("`{t}` is not a non-negative integer"),
-            )
-        })?,
-    };
+    let (obj, tag) = json_object(src, line, text, index)?;
+    let obj = &obj;
     let need = |name: &str| -> Result<DVec3, Error> {
         vec3(src, line, obj, name)?.ok_or_else(|| line_err(src, line, name, "missing"))
     };

@@ -160,12 +160,18 @@ fn build(
     })
 }
 
-fn parse_json_line(src: &str, line: usize, text: &str, index: u64) -> Result<Vector, Error> {
+/// A JSON-lines line as an object, and its tag (`index` when it has none). Errors name the line.
+pub(crate) fn json_object(
+    src: &str,
+    line: usize,
+    text: &str,
+    index: u64,
+) -> Result<(serde_json::Map<String, Value>, u64), Error> {
     let v: Value = serde_json::from_str(text)
         .map_err(|e| line_err(src, line, "(line)", format!("not JSON: {e}")))?;
-    let obj = v
-        .as_object()
-        .ok_or_else(|| line_err(src, line, "(line)", "expected a JSON object"))?;
+    let Value::Object(obj) = v else {
+        return Err(line_err(src, line, "(line)", "expected a JSON object"));
+    };
     let tag = match obj.get("tag") {
         None => index,
         Some(t) => t.as_u64().ok_or_else(|| {
@@ -177,6 +183,11 @@ fn parse_json_line(src: &str, line: usize, text: &str, index: u64) -> Result<Vec
             )
         })?,
     };
+    Ok((obj, tag))
+}
+
+fn parse_json_line(src: &str, line: usize, text: &str, index: u64) -> Result<Vector, Error> {
+    let (obj, tag) = json_object(src, line, text, index)?;
     let mut f = [0.0; 14];
     for (name, base) in [("origin", 0), ("dir", 3), ("box_min", 8), ("box_max", 11)].iter() {
         let arr = obj
