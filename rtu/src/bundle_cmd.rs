@@ -250,6 +250,9 @@ pub fn scenes(a: &Args, out: &Path) -> Result<String, String> {
                                 .map_err(|e| {
                                     format!("{name} {} {} {}: {e}", bd.set, bd.name, path.name())
                                 })?;
+                        if pb.is_hidden() {
+                            eprintln!("{} done", pb.message());
+                        }
                         pb.finish_and_clear();
                         row(&mut csv, &mut table, name, &bd, path, rebound, mname, &st);
                         recs.push(Rec {
@@ -503,6 +506,14 @@ pub fn campaign(a: &CampaignArgs, out: &Path) -> Result<String, String> {
                         }
                         if i % 1024 == 1023 {
                             pb.inc(1024);
+                            // No terminal (a log, CI): a line per million bundles instead of the bar.
+                            if pb.is_hidden() && t == 0 && i % (1 << 20) == (1 << 20) - 1 {
+                                eprintln!(
+                                    "bundle campaign: {} of {} bundles",
+                                    pb.position(),
+                                    a.bundles
+                                );
+                            }
                         }
                     }
                     sh
