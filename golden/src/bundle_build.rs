@@ -131,7 +131,7 @@ fn growth(p: &BuildParams, b: &Bundle, g: &Bundle) -> Option<f64> {
 /// invalid or does not start at its origin.
 pub fn build(rays: &[Ray], p: &BuildParams) -> Result<Vec<Built>, Error> {
     p.validate()?;
-    let mut open: Vec<Open> = Vec::with_capacity(p.open_slots);
+    let mut open: Vec<Open> = Vec::new();
     let mut out = Vec::new();
     for (i, r) in rays.iter().enumerate() {
         let one = Bundle::of_ray(r).map_err(|e| Error::Io(format!("ray {i}: {e}")))?;
@@ -187,14 +187,14 @@ pub fn build(rays: &[Ray], p: &BuildParams) -> Result<Vec<Built>, Error> {
 /// Square tiles of `tile x tile` pixels over a `w x h` image whose rays are given row by row (as
 /// [`crate::scene::primary_rays`] makes them): the natural bundles of camera rays. Edge tiles are smaller.
 pub fn tiles(rays: &[Ray], w: usize, h: usize, tile: usize) -> Result<Vec<Built>, Error> {
-    if tile == 0 || tile * tile > MAX_BUNDLE_RAYS {
+    if tile == 0 || tile > 8 {
         return Err(Error::BadFormat {
             param: "tile",
             value: tile as i64,
             why: format!("a tile of tile x tile rays must hold 1..={MAX_BUNDLE_RAYS} rays"),
         });
     }
-    if rays.len() != w * h {
+    if w.checked_mul(h) != Some(rays.len()) {
         return Err(Error::Io(format!(
             "{} rays do not form a {w} x {h} image",
             rays.len()

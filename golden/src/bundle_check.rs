@@ -16,7 +16,9 @@ use std::fmt::Write as _;
 
 /// The exact slab test's hit, fast: an f64 filter decides when the rounding cannot matter, and
 /// [`slab_exact`] (rationals) decides the rest. The filter computes each axis's distances as
-/// `(b - o) * (1 / d)`, whose relative error is below `1.51 eps` (three roundings), and widens or narrows
+/// `(b - o) * (1 / d)`, whose relative error is at most about `3 eps` (three roundings; `1 / d` is off by up
+/// to `2 eps` when it is subnormal, `|d| > 2^1022`; an underflowing product is covered by the absolute
+/// `MIN_POSITIVE`, and anything that overflows goes to the exact test), and widens or narrows
 /// them by `4 eps |t| + MIN_POSITIVE`: the widened interval encloses the exact one and the narrowed one lies
 /// inside it, so "widened empty" is a sure miss and "narrowed non-empty" a sure hit (the argument of
 /// [`crate::traverse::slab_conservative`]). Zero direction components are tested exactly; a distance that
@@ -250,6 +252,33 @@ mod tests {
         }
         // The adversarial kinds aim rays at edges and faces: both answers are frequent.
         assert!(hits > n / 10 && hits < n * 9 / 10, "{hits} of {n}");
+        // The filter's edges: subnormal and huge components (1/d overflowing or subnormal), infinite
+        // t_min, a face at t = 0, t_max ending exactly on a face, zero components of either sign.
+        let unit = Aabb {
+            min: DVec3::ZERO,
+            max: DVec3::ONE,
+        };
+        let inf = f64::INFINITY;
+        for (o, d, t0, t1) in [
+            ([-4.0, 0.5, 0.5], [1.0, 1e-320, 0.0], 0.0, inf),
+            ([-4.0, 0.5, 0.5], [1.7e308, 1e-320, -0.0], 0.0, inf),
+            ([-4.0, 1.0, 0.5], [1.7e308, 1.7e308, 0.0], 0.0, inf),
+            ([0.0, 0.5, 0.5], [-1.0, 0.0, 0.0], 0.0, inf),
+            ([0.0, 0.5, 0.5], [-1.0, 0.0, 0.0], 1e-300, inf),
+            ([2.0, 0.5, 0.5], [1.0, 0.0, 0.0], -inf, 0.0),
+            ([2.0, 0.5, 0.5], [1.0, 0.0, 0.0], -inf, -1.0),
+            ([-1.0, 0.5, 0.5], [1.0, 0.0, 0.0], 0.0, 1.0),
+            ([-1.0, 0.5, 0.5], [1.0, 0.0, 0.0], 0.0, 1.0 - f64::EPSILON),
+            ([-1.0, 0.5, 1.0], [1.0, 0.0, -0.0], 0.0, inf),
+        ] {
+            let r = Ray {
+                origin: DVec3::from(o),
+                dir: DVec3::from(d),
+                t_min: t0,
+                t_max: t1,
+            };
+            assert_eq!(slab_hit(&r, &unit), slab_exact(&r, &unit).hit, "{r:?}");
+        }
     }
 
     #[test]

@@ -14,8 +14,9 @@
 //! stream through the pair during a split, at no extra cycle; the RTL does not do that yet). Distances
 //! are not shortened by hits (an "all hits" traversal), so the node visits do not depend on child order.
 //!
-//! Every answer is checked: "all hit" with an active ray that misses, "all miss" with one that hits, or a
-//! ray dropped by the single-ray test although it hits, is a correctness bug and returns an error.
+//! Every answer is checked: "all hit" with a ray of the tested bundle that misses (every ray of the
+//! original bundle, or of the re-bounded one), "all miss" with one that hits, or a ray dropped by the
+//! single-ray test although it hits, is a correctness bug and returns an error.
 //!
 //! # Cycles
 //! A bundle-box test costs one pair cycle, plus `ceil(|A| / 2)` when it splits; an early split costs
@@ -231,12 +232,17 @@ pub fn traverse_bundle(
     while let Some((node, active, bundle)) = stack.pop() {
         let nd = &bvh.nodes[node];
         let bx = &nd.bounds;
-        let mut hits = 0u64;
+        // Exact hits of every ray of the bundle; `hits` of the active ones. The bundle tested here stands for
+        // its `members`: every ray of the original bundle, or (re-bounded) the active rays.
+        let mut all_hits = 0u64;
         for (k, &i) in b.rays.iter().enumerate() {
-            if active >> k & 1 == 1 && exact.hits(i, node) {
-                hits |= 1 << k;
+            if exact.hits(i, node) {
+                all_hits |= 1 << k;
             }
         }
+        let hits = all_hits & active;
+        let members = if opt.rebound { active } else { all };
+        let member_hits = all_hits & members;
         let count = active.count_ones() as u64;
         st.tests += 1;
         st.ray_cycles += count;
@@ -266,15 +272,19 @@ pub fn traverse_bundle(
                 return Err(Error::Io(at("both \"all hit\" and \"all miss\"")));
             }
             if all_hit {
-                if hits != active {
-                    return Err(Error::Io(at("\"all hit\" although an active ray misses")));
+                if member_hits != members {
+                    return Err(Error::Io(at(
+                        "\"all hit\" although a ray of the bundle misses",
+                    )));
                 }
                 st.decided += 1;
                 st.decided_hit += 1;
                 active
             } else if all_miss {
-                if hits != 0 {
-                    return Err(Error::Io(at("\"all miss\" although an active ray hits")));
+                if member_hits != 0 {
+                    return Err(Error::Io(at(
+                        "\"all miss\" although a ray of the bundle hits",
+                    )));
                 }
                 st.decided += 1;
                 0

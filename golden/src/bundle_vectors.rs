@@ -86,6 +86,27 @@ fn relabel<'a>(src: &'a str, line: usize, field: &str) -> impl Fn(Error) -> Erro
 fn parse_line(src: &str, line: usize, text: &str, index: u64) -> Result<BundleVector, Error> {
     let (obj, tag) = json_object(src, line, text, index)?;
     let obj = &obj;
+    const KEYS: [&str; 10] = [
+        "tag", "rays", "box_min", "box_max", "o_lo", "o_hi", "d_lo", "d_hi", "t_lo", "t_hi",
+    ];
+    if let Some(k) = obj.keys().find(|k| !KEYS.contains(&k.as_str())) {
+        return Err(line_err(
+            src,
+            line,
+            k,
+            format!("unknown field (expected {})", KEYS.join(", ")),
+        ));
+    }
+    if !obj.contains_key("o_lo") {
+        if let Some(k) = KEYS[5..].iter().find(|k| obj.contains_key(**k)) {
+            return Err(line_err(
+                src,
+                line,
+                k,
+                "a bound without `o_lo`: give all of a bundle's bounds",
+            ));
+        }
+    }
     let need = |name: &str| -> Result<DVec3, Error> {
         vec3(src, line, obj, name)?.ok_or_else(|| line_err(src, line, name, "missing"))
     };
@@ -117,6 +138,17 @@ fn parse_line(src: &str, line: usize, text: &str, index: u64) -> Result<BundleVe
                     "expected {\"origin\", \"dir\", \"t_max\"}",
                 )
             })?;
+            if let Some(k) = ro
+                .keys()
+                .find(|k| !["origin", "dir", "t_max"].contains(&k.as_str()))
+            {
+                return Err(line_err(
+                    src,
+                    line,
+                    &format!("{field}.{k}"),
+                    "unknown field (expected origin, dir, t_max)",
+                ));
+            }
             let get = |name: &str| -> Result<DVec3, Error> {
                 vec3(src, line, ro, name)
                     .map_err(|e| match e {
@@ -335,6 +367,9 @@ mod tests {
                 "rays[0]",
             ),
             ("not json", "(line)"),
+            ("{\"rays\":[{\"origin\":[0,0,0],\"dir\":[1,0,0]}],\"t_mx\":1,\"box_min\":[0,0,0],\"box_max\":[1,1,1]}", "t_mx"),
+            ("{\"rays\":[{\"origin\":[0,0,0],\"dir\":[1,0,0],\"tmax\":1}],\"box_min\":[0,0,0],\"box_max\":[1,1,1]}", "rays[0].tmax"),
+            ("{\"rays\":[{\"origin\":[0,0,0],\"dir\":[1,0,0]}],\"t_hi\":1,\"box_min\":[0,0,0],\"box_max\":[1,1,1]}", "t_hi"),
         ];
         for (text, field) in cases {
             let r = read(&format!("# comment\n\n{text}\n"));

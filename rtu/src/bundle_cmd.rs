@@ -459,7 +459,7 @@ pub fn campaign(a: &CampaignArgs, out: &Path) -> Result<String, String> {
             .expect("template"),
     );
     let start = std::time::Instant::now();
-    let shares: Vec<Share> = std::thread::scope(|s| {
+    let shares: Vec<Share> = std::thread::scope(|s| -> Result<Vec<Share>, String> {
         let handles: Vec<_> = (0..a.threads as u64)
             .map(|t| {
                 let n = a.bundles / a.threads as u64 + u64::from(t < a.bundles % a.threads as u64);
@@ -478,12 +478,12 @@ pub fn campaign(a: &CampaignArgs, out: &Path) -> Result<String, String> {
                         let or = (i % a.oracle_every == 0).then(|| oracle(&c));
                         for (k, (bf, map)) in fixed.iter().zip(maps).enumerate() {
                             let got = golden::bundle_fix::decide_fix(bf, map, &c.bundle, &c.bounds)
-                                .expect("generated bundles fit the grid");
+                                .map_err(|e| format!("fixed {}: {e}", bf.name()))?;
                             sh.tallies[k].add(&c, &tr, or, got);
                         }
                         for (k, f) in floats.iter().enumerate() {
                             let got = golden::bundle_float::decide_float(f, &c.bundle, &c.bounds)
-                                .expect("generated bundles fit the float formats");
+                                .map_err(|e| format!("float {}: {e}", f.name()))?;
                             sh.tallies[fixed.len() + k].add(&c, &tr, or, got);
                         }
                         if i % a.one_ray_every == 0 {
@@ -492,7 +492,7 @@ pub fn campaign(a: &CampaignArgs, out: &Path) -> Result<String, String> {
                                 let hit = truth(&c)[0];
                                 let got =
                                     golden::bundle_fix::decide_fix(bf, map, &c.bundle, &c.bounds)
-                                        .expect("on-grid rays fit the grid");
+                                        .map_err(|e| format!("fixed {}: {e}", bf.name()))?;
                                 let o = &mut sh.one_ray[k];
                                 o.0 += 1;
                                 if got == (hit, !hit) {
@@ -506,7 +506,7 @@ pub fn campaign(a: &CampaignArgs, out: &Path) -> Result<String, String> {
                         }
                         if i % 1024 == 1023 {
                             pb.inc(1024);
-                            // No terminal (a log, CI): a line per million bundles instead of the bar.
+                            // No terminal (a log, CI): a line per 2^20 bundles of the first thread instead of the bar.
                             if pb.is_hidden() && t == 0 && i % (1 << 20) == (1 << 20) - 1 {
                                 eprintln!(
                                     "bundle campaign: {} of {} bundles",
@@ -516,15 +516,15 @@ pub fn campaign(a: &CampaignArgs, out: &Path) -> Result<String, String> {
                             }
                         }
                     }
-                    sh
+                    Ok(sh)
                 })
             })
             .collect();
         handles
             .into_iter()
-            .map(|h| h.join().expect("campaign thread"))
+            .map(|h| h.join().unwrap_or_else(|e| std::panic::resume_unwind(e)))
             .collect()
-    });
+    })?;
     pb.finish_and_clear();
     let secs = start.elapsed().as_secs_f64();
     let mut tallies = vec![Tally::default(); names.len()];
