@@ -345,14 +345,8 @@ mod tests {
     }
 
     fn map_for(sc: &scene::TriScene, f: FixFormat) -> GridMap {
-        let b = sc.bounds();
-        let ext = (b.max - b.min) * 0.5 + glam::DVec3::splat(1e-3);
-        GridMap::for_bounds(
-            f,
-            (b.min - ext).min(sc.camera.eye),
-            (b.max + ext).max(sc.camera.eye),
-        )
-        .unwrap()
+        let (lo, hi) = sc.grid_bounds();
+        GridMap::for_bounds(f, lo, hi).unwrap()
     }
 
     #[test]

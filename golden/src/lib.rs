@@ -50,5 +50,6 @@ pub use geom::{Aabb, Ray};
 pub mod bvh;
 pub mod planegen;
 pub mod scene;
+pub mod scene_trav;
 pub mod traverse;
 pub mod tri;

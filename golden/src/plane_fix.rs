@@ -100,7 +100,18 @@ impl CullFixFormat {
 
     /// The default plane format over a slab format: `N = 8`, `FD = FI`, `R = 8`.
     pub fn over(base: FixFormat) -> Self {
-        Self::new(base, 8, base.fi, 8).expect("the presets fit")
+        Self::try_over(base).expect("the presets fit")
+    }
+
+    /// [`Self::over`] for any slab format: an error when the default plane widths do not fit over it.
+    pub fn try_over(base: FixFormat) -> Result<Self, Error> {
+        Self::new(base, 8, base.fi.min(24), 8)
+    }
+
+    /// A plane format over `base` for a tester with no planes (`K = 0`), whose plane widths are never
+    /// used: the default when it fits, else the narrowest one.
+    pub fn slab_only(base: FixFormat) -> Result<Self, Error> {
+        Self::try_over(base).or_else(|_| Self::new(base, 2, 1, 1))
     }
 
     /// Parses `b12` (the default over a preset) or `b12,N,FD,R`.

@@ -196,11 +196,7 @@ pub fn scenes(a: &Args, out: &Path) -> Result<String, String> {
         let sec = golden::scene::secondary_rays(&sc, &prim, &hits, a.seed + 1);
         let b = sc.bounds();
         let diag = (b.max - b.min).length();
-        let ext = (b.max - b.min) * 0.5 + glam::DVec3::splat(1e-3);
-        let (lo, hi) = (
-            (b.min - ext).min(sc.camera.eye),
-            (b.max + ext).max(sc.camera.eye),
-        );
+        let (lo, hi) = sc.grid_bounds();
         let mut built_paths = vec![];
         for p in &paths {
             built_paths.push(match p {

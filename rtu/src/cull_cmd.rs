@@ -4,8 +4,9 @@
 use golden::bvh::Bvh;
 use golden::fixed::{FixFormat, GridMap};
 use golden::geom::Ray;
-use golden::plane_fix::{self, CullFixFormat, FixNode, NodeFixRay};
-use golden::plane_float::{self, CullFloatFormat, FloatNode, NodeFloatRay};
+use golden::plane_fix::CullFixFormat;
+use golden::plane_float::CullFloatFormat;
+use golden::scene_trav::{FixTester, FloatTester};
 use golden::traverse::{trace, AabbOnly, NodeTester};
 use indicatif::{ProgressBar, ProgressStyle};
 use std::fmt::Write as _;
@@ -91,50 +92,6 @@ fn row(t: &mut String, dp: &str, name: &str, k: usize, st: &CullStats) {
     );
 }
 
-/// The fixed-point chained tester as a traversal's node test: every node's box and planes stored in the
-/// format (planes fitted to the node's subtree), every ray quantised on the way in.
-struct FixTester {
-    cf: CullFixFormat,
-    k: usize,
-    map: GridMap,
-    nodes: Vec<FixNode>,
-}
-
-impl NodeTester for FixTester {
-    fn test(&mut self, ray: &Ray, node: usize) -> Option<(f64, f64)> {
-        let r = NodeFixRay {
-            ray: self.map.quantize_ray(ray).expect("rays inside the grid"),
-            dir: plane_fix::quantize_dir(&self.cf, ray).expect("valid ray"),
-        };
-        let out = plane_fix::node_fix(&self.cf, self.k, &r, &self.nodes[node]);
-        out.hit.then(|| {
-            (
-                r.ray.t_world_f64(&self.cf.base, out.t_entry),
-                r.ray.t_world_f64(&self.cf.base, out.t_exit),
-            )
-        })
-    }
-}
-
-struct FloatTester {
-    cf: CullFloatFormat,
-    k: usize,
-    nodes: Vec<FloatNode>,
-}
-
-impl NodeTester for FloatTester {
-    fn test(&mut self, ray: &Ray, node: usize) -> Option<(f64, f64)> {
-        let f = &self.cf.f;
-        let r = NodeFloatRay {
-            ray: golden::slab_float::quantize_ray(f, ray).expect("rays in range"),
-            dir: plane_float::quantize_dir(&self.cf, ray).expect("valid ray"),
-        };
-        let out = plane_float::node_float(&self.cf, self.k, &r, &self.nodes[node]);
-        out.hit
-            .then(|| (f.to_f64(out.t_entry), f.to_f64(out.t_exit)))
-    }
-}
-
 /// A node tester with a conservativeness check on scenes: every node that `inner` culls although the
 /// exact slab test keeps it (a cull by the planes) is checked exactly — no triangle of its subtree is hit
 /// by the ray within its current `[t_min, t_max]` ([`golden::tri::tri_hit`]).
@@ -174,63 +131,6 @@ impl<T: NodeTester> NodeTester for Checked<'_, T> {
         }
         r
     }
-}
-
-fn subtree_vertices(bvh: &Bvh, tris: &[golden::tri::Triangle], node: usize) -> Vec<glam::DVec3> {
-    bvh.subtree_tris(node)
-        .iter()
-        .flat_map(|&t| tris[t].v)
-        .collect()
-}
-
-/// Every node of `bvh` stored in a fixed format: its box, and its first `k` planes of `planes` fitted to
-/// its subtree (`k = 0`: the AABB-only tester of the same format).
-fn fix_nodes(
-    cf: &CullFixFormat,
-    map: &GridMap,
-    bvh: &Bvh,
-    tris: &[golden::tri::Triangle],
-    planes: &[Vec<golden::plane::Plane>],
-    k: usize,
-) -> Result<Vec<FixNode>, String> {
-    let mut nodes = Vec::with_capacity(bvh.nodes.len());
-    for (i, nd) in bvh.nodes.iter().enumerate() {
-        let mut n = FixNode {
-            b: map.quantize_box(&nd.bounds).map_err(|e| e.to_string())?,
-            ..Default::default()
-        };
-        let verts = subtree_vertices(bvh, tris, i);
-        for (j, p) in planes[i].iter().take(k).enumerate() {
-            n.planes[j] =
-                plane_fix::fit_plane(cf, map, &n.b, p.n, &verts).map_err(|e| e.to_string())?;
-        }
-        nodes.push(n);
-    }
-    Ok(nodes)
-}
-
-/// The float counterpart of [`fix_nodes`].
-fn float_nodes(
-    cf: &CullFloatFormat,
-    bvh: &Bvh,
-    tris: &[golden::tri::Triangle],
-    planes: &[Vec<golden::plane::Plane>],
-    k: usize,
-) -> Result<Vec<FloatNode>, String> {
-    let mut nodes = Vec::with_capacity(bvh.nodes.len());
-    for (i, nd) in bvh.nodes.iter().enumerate() {
-        let mut n = FloatNode {
-            b: golden::slab_float::quantize_box(&cf.f, &nd.bounds).map_err(|e| e.to_string())?,
-            ..Default::default()
-        };
-        let verts = subtree_vertices(bvh, tris, i);
-        for (j, p) in planes[i].iter().take(k).enumerate() {
-            n.planes[j] =
-                plane_float::fit_plane(cf, &n.b, p.n, &verts).map_err(|e| e.to_string())?;
-        }
-        nodes.push(n);
-    }
-    Ok(nodes)
 }
 
 /// Which planes a traversal uses: none (the format's own AABB-only tester), each node's own normals, or
@@ -279,12 +179,7 @@ pub fn scenes(
         let prim = golden::scene::primary_rays(&sc, w, h);
         let (hits0, _) = trace(&bvh, &sc.tris, &prim, &mut AabbOnly::new(&bvh));
         let sec = golden::scene::secondary_rays(&sc, &prim, &hits0, 2);
-        let b = sc.bounds();
-        let ext = (b.max - b.min) * 0.5 + glam::DVec3::splat(1e-3);
-        let (lo, hi) = (
-            (b.min - ext).min(sc.camera.eye),
-            (b.max + ext).max(sc.camera.eye),
-        );
+        let (lo, hi) = sc.grid_bounds();
         // Per K: (normals, planes of every node).
         let mut plane_sets = vec![];
         for &k in ks {
@@ -342,8 +237,9 @@ pub fn scenes(
                 let map = GridMap::for_bounds(*fmt, lo, hi).map_err(|e| e.to_string())?;
                 let mut k0 = 0;
                 for &(k, nm, planes) in &configs {
-                    let nodes = fix_nodes(&cf, &map, &bvh, &sc.tris, planes, k)?;
-                    let mut t = Checked::new(FixTester { cf, k, map, nodes }, &bvh, &sc.tris);
+                    let tester = FixTester::new(cf, map.clone(), &bvh, &sc.tris, planes, k)
+                        .map_err(|e| e.to_string())?;
+                    let mut t = Checked::new(tester, &bvh, &sc.tris);
                     let run = trace(&bvh, &sc.tris, rays, &mut t);
                     check.push((
                         t.checked,
@@ -368,8 +264,9 @@ pub fn scenes(
                 let cf = CullFloatFormat::over(*f);
                 let mut k0 = 0;
                 for &(k, nm, planes) in &configs {
-                    let nodes = float_nodes(&cf, &bvh, &sc.tris, planes, k)?;
-                    let mut t = Checked::new(FloatTester { cf, k, nodes }, &bvh, &sc.tris);
+                    let tester = FloatTester::new(cf, &bvh, &sc.tris, planes, k)
+                        .map_err(|e| e.to_string())?;
+                    let mut t = Checked::new(tester, &bvh, &sc.tris);
                     let run = trace(&bvh, &sc.tris, rays, &mut t);
                     check.push((
                         t.checked,
