@@ -43,6 +43,7 @@ pub mod plane_float;
 pub mod slab_fix;
 pub mod slab_float;
 pub mod slab_ref;
+pub mod stability;
 pub mod vectors;
 
 pub use error::Error;
