@@ -12,6 +12,8 @@ mod main_job;
 mod run_bundles;
 mod run_vectors;
 mod scene;
+mod stability_cmd;
+mod sweep_cmd;
 
 use clap::{Parser, Subcommand};
 use std::path::PathBuf;
@@ -117,6 +119,13 @@ enum Cmd {
     /// The bundle pair's conservativeness campaign: random and adversarial bundles on every datapath
     /// against the exact per-ray results and the exact oracle (writes bundle_campaign.md).
     BundleCampaign(bundle_cmd::CampaignArgs),
+    /// The failure cases of the textbook methods across the three testers, naive against ours (writes
+    /// stability.csv and stability.md).
+    Stability,
+    /// Speed against accuracy on scenes: every datapath, format, planes per node and bundle size through
+    /// one traversal model, against the exact machine, joined with the synthesis table; writes sweep.csv,
+    /// sweep.md and per scene two SVG charts with the Pareto front.
+    Sweep(sweep_cmd::Args),
     /// Cull planes on scenes: triangle tests saved against AABB-only traversal (the same format with no
     /// planes, and exact), with each node's own normals or normals shared by siblings, bytes per node,
     /// closest hits compared with the exact reference.
@@ -270,6 +279,8 @@ fn main() -> ExitCode {
             print!("{t}");
             std::fs::write(cli.out.join("bundle_scenes.md"), t).map_err(|e| e.to_string())
         }),
+        Cmd::Stability => stability_cmd::run(&cli.out).map(|t| print!("{t}")),
+        Cmd::Sweep(a) => sweep_cmd::run(&a, &cli.out).map(|t| print!("{t}")),
         Cmd::BundleCampaign(a) => bundle_cmd::campaign(&a, &cli.out).map(|t| print!("{t}")),
         Cmd::CullScenes {
             scenes,

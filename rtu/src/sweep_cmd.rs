@@ -1,0 +1,718 @@
+//! `rtu sweep`: speed against accuracy on scenes (issue 6). Every configuration — datapath and format,
+//! planes per node `K`, bundle size `B` — runs the same traversal model ([`golden::scene_trav`]) over the
+//! scene's primary, bounce and shadow rays; accuracy is measured against the exact machine of the same
+//! `K` and `B`, cost is joined from the synthesis table (area and logic depth from Yosys, latency) and the
+//! traversal's tester cycles per ray. Writes `sweep.csv`, `sweep.md` and per scene two SVG charts (extra
+//! tester cycles against area, cycles per ray against area) with the Pareto front drawn.
+
+use crate::chart::{scatter_chart, Point};
+use golden::bundle_build::{build, tiles, BuildParams, Built};
+use golden::bundle_fix::BundleFixFormat;
+use golden::bundle_trav::BundlePath;
+use golden::bvh::Bvh;
+use golden::fixed::{FixFormat, GridMap};
+use golden::float::FloatFormat;
+use golden::geom::Ray;
+use golden::plane::Plane;
+use golden::plane_fix::CullFixFormat;
+use golden::plane_float::CullFloatFormat;
+use golden::scene::TriScene;
+use golden::scene_trav::{
+    traverse, ExactTester, FixTester, FloatTester, Machine, RaySet, SceneStats,
+};
+use golden::traverse::{trace, AabbOnly, NodeTester};
+use std::collections::HashMap;
+use std::fmt::Write as _;
+use std::path::{Path, PathBuf};
+use std::time::Instant;
+
+/// Arguments of `rtu sweep`.
+#[derive(clap::Args, Debug, Clone)]
+pub struct Args {
+    /// Scenes, comma-separated: built-in names (room, grass, mesh, soup) or OBJ files (`*.obj`).
+    #[arg(long, default_value = "room,grass,mesh,soup")]
+    pub scenes: String,
+    /// Fixed formats (b8, b12, b16, or G,I,FI,T,FT separated by `/`), comma-separated; empty for none.
+    #[arg(long, default_value = "b8,b12,b16")]
+    pub fixed: String,
+    /// Float formats (fp32, bf16, fp16, eXmY), comma-separated; empty for none.
+    #[arg(long, default_value = "fp32,bf16,fp16")]
+    pub float: String,
+    /// Planes per node, comma-separated (0 = the slab tester alone).
+    #[arg(long, default_value = "0,1,4")]
+    pub k: String,
+    /// Rays per bundle, comma-separated (1 = single rays; otherwise a square: 4, 16, 64).
+    #[arg(long, default_value = "1,4,16")]
+    pub bundle: String,
+    /// Image width and height of the primary rays.
+    #[arg(long, default_value_t = 32)]
+    pub width: usize,
+    #[arg(long, default_value_t = 24)]
+    pub height: usize,
+    /// Ray sets measured, comma-separated: primary, bounce, shadow.
+    #[arg(long, default_value = "primary,bounce,shadow")]
+    pub sets: String,
+    /// Secondary-ray origins are moved off the surface by this fraction of the scene's diagonal (see
+    /// `golden::scene::secondary_rays_offset`: a unit cannot tell an origin nearer than its resolution
+    /// from the surface).
+    #[arg(long, default_value_t = 1e-7)]
+    pub offset: f64,
+    /// Seed of the scenes and the secondary rays.
+    #[arg(long, default_value_t = 1)]
+    pub seed: u64,
+    /// Synthesis table (the CSV `scripts/synth` writes; rows of several runs may be concatenated).
+    #[arg(long, default_value = "docs/sweep/area.csv")]
+    pub area: PathBuf,
+}
+
+/// A datapath and format of the sweep.
+#[derive(Clone, Copy, Debug)]
+pub enum Format {
+    Fix(FixFormat),
+    Float(FloatFormat),
+}
+
+impl Format {
+    pub fn name(&self) -> String {
+        match self {
+            Format::Fix(f) => golden::bundle_trav::short_name(f),
+            Format::Float(f) => float_short(f),
+        }
+    }
+    pub fn datapath(&self) -> &'static str {
+        match self {
+            Format::Fix(_) => "fixed",
+            Format::Float(_) => "float",
+        }
+    }
+    /// Total bits of a coordinate.
+    pub fn bits(&self) -> u32 {
+        match self {
+            Format::Fix(f) => f.g,
+            Format::Float(f) => 1 + f.e + f.m,
+        }
+    }
+}
+
+/// `fp32`, `bf16`, `fp16`, or the format's `eXmY` name.
+pub fn float_short(f: &FloatFormat) -> String {
+    match (f.e, f.m) {
+        (8, 23) => "fp32".into(),
+        (8, 7) => "bf16".into(),
+        (5, 10) => "fp16".into(),
+        _ => f.name(),
+    }
+}
+
+/// One row of the synthesis table.
+#[derive(Clone, Debug, Default, PartialEq)]
+pub struct Area {
+    pub latency: usize,
+    pub ice40_lut4: u64,
+    pub ice40_depth: u64,
+    pub xilinx_lut: u64,
+    pub xilinx_dsp: u64,
+}
+
+impl Area {
+    fn plus(&self, o: &Area) -> Area {
+        Area {
+            latency: self.latency.max(o.latency),
+            ice40_lut4: self.ice40_lut4 + o.ice40_lut4,
+            ice40_depth: self.ice40_depth.max(o.ice40_depth),
+            xilinx_lut: self.xilinx_lut + o.xilinx_lut,
+            xilinx_dsp: self.xilinx_dsp + o.xilinx_dsp,
+        }
+    }
+}
+
+/// Reads a synthesis CSV (header `module,latency,generic_cells,ice40_lut4,ice40_carry,ice40_ff,
+/// ice40_depth,xilinx_lut,xilinx_dsp,...`; repeated header lines are skipped; a later row of a module
+/// replaces an earlier one). A missing file gives an empty table.
+pub fn read_area(path: &Path) -> Result<HashMap<String, Area>, String> {
+    let Ok(text) = std::fs::read_to_string(path) else {
+        return Ok(HashMap::new());
+    };
+    let mut t = HashMap::new();
+    for (n, line) in text.lines().enumerate() {
+        let f: Vec<&str> = line.split(',').map(str::trim).collect();
+        if line.trim().is_empty() || f[0] == "module" {
+            continue;
+        }
+        let bad = |what: &str| format!("{}:{}: {what}", path.display(), n + 1);
+        if f.len() < 9 {
+            return Err(bad("expected at least 9 comma-separated fields"));
+        }
+        let num = |i: usize| -> Result<u64, String> {
+            f[i].parse::<u64>()
+                .map_err(|_| bad(&format!("field {} = `{}` is not a count", i + 1, f[i])))
+        };
+        t.insert(
+            f[0].to_string(),
+            Area {
+                latency: num(1)? as usize,
+                ice40_lut4: num(3)?,
+                ice40_depth: num(6)?,
+                xilinx_lut: num(7)?,
+                xilinx_dsp: num(8)?,
+            },
+        );
+    }
+    Ok(t)
+}
+
+/// The RTL modules a configuration needs: the single-ray node tester, and the pair when `B > 1`.
+pub fn modules(f: &Format, k: usize, b: usize) -> Result<Vec<String>, String> {
+    let mut m = vec![match f {
+        Format::Fix(x) if k == 0 => rtl::export::slab_fix_module(x),
+        Format::Fix(x) => rtl::export::plane_fix_module(
+            &CullFixFormat::try_over(*x).map_err(|e| format!("{}: {e}", x.name()))?,
+            k,
+        ),
+        Format::Float(x) if k == 0 => rtl::export::slab_float_module(x),
+        Format::Float(x) => {
+            rtl::plane_float_export::plane_float_module(&CullFloatFormat::over(*x), k)
+        }
+    }];
+    if b > 1 {
+        m.push(match f {
+            Format::Fix(x) => rtl::bundle_fix::bundle_fix_module(
+                &BundleFixFormat::over(*x).map_err(|e| e.to_string())?,
+            ),
+            Format::Float(x) => rtl::bundle_float::bundle_float_module(x),
+        });
+    }
+    Ok(m)
+}
+
+/// The bundles of a ray set for bundle size `b`: single rays, square tiles of the image (primary), or
+/// the builder's bundles (secondary; direction spread 0.2, origin spread a tenth of the diagonal).
+fn bundles(
+    set: &str,
+    rays: &[Ray],
+    b: usize,
+    w: usize,
+    h: usize,
+    diag: f64,
+) -> Result<Vec<Built>, String> {
+    if set == "primary" {
+        let s = (b as f64).sqrt().round() as usize;
+        if s * s != b {
+            return Err(format!(
+                "bundle size {b}: primary rays are bundled in square tiles (1, 4, 16, 64)"
+            ));
+        }
+        return tiles(rays, w, h, s).map_err(|e| e.to_string());
+    }
+    if b == 1 {
+        return tiles(rays, rays.len(), 1, 1).map_err(|e| e.to_string());
+    }
+    build(
+        rays,
+        &BuildParams {
+            max_rays: b,
+            origin_spread: 0.1 * diag,
+            dir_spread: 0.2,
+            t_spread: f64::INFINITY,
+            open_slots: 16,
+        },
+    )
+    .map_err(|e| format!("{set} rays: {e}"))
+}
+
+/// One measured configuration on one scene (all ray sets summed).
+#[derive(Clone, Debug)]
+pub struct Rec {
+    pub scene: String,
+    pub format: Format,
+    pub k: usize,
+    pub b: usize,
+    pub st: SceneStats,
+    /// The exact machine of the same `K` and `B`.
+    pub exact: SceneStats,
+    pub modules: Vec<String>,
+    pub area: Option<Area>,
+}
+
+impl Rec {
+    /// Tester cycles beyond the exact machine's, as a fraction of its.
+    pub fn extra_cycles(&self) -> f64 {
+        let c = |s: &SceneStats| (s.box_tests + s.pair_tests) as f64;
+        c(&self.st) / c(&self.exact).max(1.0) - 1.0
+    }
+    /// Triangle tests beyond the exact machine's, as a fraction of its.
+    pub fn extra_tris(&self) -> f64 {
+        self.st.tri_tests as f64 / self.exact.tri_tests.max(1) as f64 - 1.0
+    }
+    pub fn label(&self) -> String {
+        format!("{} K{} B{}", self.format.name(), self.k, self.b)
+    }
+}
+
+/// A scene by name or OBJ path.
+pub fn load_scene(name: &str, seed: u64) -> Result<TriScene, String> {
+    if name.ends_with(".obj") {
+        golden::scene::load_obj(Path::new(name)).map_err(|e| e.to_string())
+    } else {
+        golden::scene::by_name(name, seed, None).map_err(|e| e.to_string())
+    }
+}
+
+/// A scene prepared for measuring: BVH, planes per K, ray sets with their exact facts.
+pub struct Prepared<'a> {
+    pub sc: &'a TriScene,
+    pub bvh: Bvh,
+    pub sets: Vec<(&'static str, Vec<Ray>)>,
+    pub lo_hi: (glam::DVec3, glam::DVec3),
+    pub diag: f64,
+}
+
+impl<'a> Prepared<'a> {
+    /// Builds the BVH (binned SAH, leaves of up to 4) and the primary (`w x h`), bounce and shadow rays;
+    /// keeps the sets named in `sets`.
+    pub fn new(
+        sc: &'a TriScene,
+        w: usize,
+        h: usize,
+        seed: u64,
+        sets: &[String],
+        offset: f64,
+    ) -> Result<Self, String> {
+        if !(offset.is_finite() && (0.0..=0.1).contains(&offset)) {
+            return Err(format!(
+                "--offset {offset}: the secondary-ray offset must be in [0, 0.1] of the diagonal"
+            ));
+        }
+        if let Some(bad) = sets
+            .iter()
+            .find(|s| !["primary", "bounce", "shadow"].contains(&s.as_str()))
+        {
+            return Err(format!(
+                "ray set `{bad}`: expected primary, bounce or shadow"
+            ));
+        }
+        let bvh = Bvh::build(&sc.tris, 4).map_err(|e| e.to_string())?;
+        let prim = golden::scene::primary_rays(sc, w, h);
+        let (hits, _) = trace(&bvh, &sc.tris, &prim, &mut AabbOnly::new(&bvh));
+        let sec = golden::scene::secondary_rays_offset(sc, &prim, &hits, seed + 1, offset);
+        let b = sc.bounds();
+        Ok(Prepared {
+            sc,
+            bvh,
+            sets: [
+                ("primary", prim),
+                ("bounce", sec.bounce),
+                ("shadow", sec.shadow),
+            ]
+            .into_iter()
+            .filter(|(n, _)| sets.iter().any(|s| s == n))
+            .collect(),
+            lo_hi: sc.grid_bounds(),
+            diag: (b.max - b.min).length(),
+        })
+    }
+}
+
+/// A single-ray node tester of a format over a prepared scene.
+pub fn tester(
+    p: &Prepared,
+    f: &Format,
+    planes: &[Vec<Plane>],
+    k: usize,
+) -> Result<(Box<dyn NodeTester>, Option<BundlePath>), String> {
+    let e = |e: golden::Error| format!("{}: {e}", f.name());
+    Ok(match f {
+        Format::Fix(x) => {
+            let map = GridMap::for_bounds(*x, p.lo_hi.0, p.lo_hi.1).map_err(e)?;
+            let cf = if k == 0 {
+                CullFixFormat::slab_only(*x)
+            } else {
+                CullFixFormat::try_over(*x)
+            }
+            .map_err(e)?;
+            let t = FixTester::new(cf, map.clone(), &p.bvh, &p.sc.tris, planes, k).map_err(e)?;
+            let pair = BundleFixFormat::over(*x)
+                .ok()
+                .map(|bf| BundlePath::Fix(bf, map));
+            (Box::new(t), pair)
+        }
+        Format::Float(x) => {
+            let t = FloatTester::new(CullFloatFormat::over(*x), &p.bvh, &p.sc.tris, planes, k)
+                .map_err(e)?;
+            (Box::new(t), Some(BundlePath::Float(*x)))
+        }
+    })
+}
+
+/// Runs one machine over every ray set of a prepared scene, summing the counts.
+pub fn run_machine(
+    p: &Prepared,
+    sets: &mut [RaySet],
+    t: &mut dyn NodeTester,
+    pair: Option<&BundlePath>,
+    b: usize,
+    w: usize,
+    h: usize,
+) -> Result<SceneStats, String> {
+    let mut total = SceneStats::default();
+    for (i, set) in sets.iter_mut().enumerate() {
+        let name = p.sets[i].0;
+        let built = bundles(name, set.rays, b, w, h, p.diag)?;
+        let mut m = Machine {
+            tester: t,
+            pair: if b > 1 { pair } else { None },
+            rebound: true,
+        };
+        let st = traverse(&p.bvh, &p.sc.tris, set, &built, &mut m, || {})
+            .map_err(|e| format!("{name} rays: {e}"))?;
+        total.add(&st);
+    }
+    Ok(total)
+}
+
+fn list<T>(s: &str, f: impl Fn(&str) -> Result<T, String>) -> Result<Vec<T>, String> {
+    s.split(',')
+        .map(str::trim)
+        .filter(|x| !x.is_empty())
+        .map(f)
+        .collect()
+}
+
+/// Parses the format lists of the arguments.
+pub fn formats(fixed: &str, float: &str) -> Result<Vec<Format>, String> {
+    let mut v = list(fixed, |s| {
+        FixFormat::parse(&s.replace('/', ","))
+            .map(Format::Fix)
+            .map_err(|e| format!("--fixed `{s}`: {e}"))
+    })?;
+    v.extend(list(float, |s| {
+        FloatFormat::parse(s)
+            .map(Format::Float)
+            .map_err(|e| format!("--float `{s}`: {e}"))
+    })?);
+    Ok(v)
+}
+
+/// Measures every configuration on every scene; returns the records (progress lines on stderr).
+pub fn measure(a: &Args) -> Result<Vec<Rec>, String> {
+    let fmts = formats(&a.fixed, &a.float)?;
+    let ks = list(&a.k, |s| {
+        let k: usize = s
+            .parse()
+            .map_err(|_| format!("--k `{s}` is not a number"))?;
+        if k > 8 {
+            return Err(format!("--k {k}: the testers take 0 to 8 planes per node"));
+        }
+        Ok(k)
+    })?;
+    let bs = list(&a.bundle, |s| {
+        let b: usize = s
+            .parse()
+            .map_err(|_| format!("--bundle `{s}` is not a number"))?;
+        if !matches!(b, 1 | 4 | 16 | 64) {
+            return Err(format!(
+                "--bundle {b}: bundle sizes are 1, 4, 16 or 64 (square tiles)"
+            ));
+        }
+        Ok(b)
+    })?;
+    if a.width == 0 || a.height == 0 {
+        return Err("--width and --height must be at least 1".into());
+    }
+    let area = read_area(&a.area)?;
+    let scenes = list(&a.scenes, |s| Ok(s.to_string()))?;
+    let set_names = list(&a.sets, |s| Ok(s.to_string()))?;
+    let total = scenes.len() * ks.len() * bs.len() * (fmts.len() + 1);
+    let mut done = 0;
+    let mut recs = vec![];
+    for name in &scenes {
+        let sc = load_scene(name, a.seed)?;
+        let p = Prepared::new(&sc, a.width, a.height, a.seed, &set_names, a.offset)?;
+        let mut sets: Vec<RaySet> = p
+            .sets
+            .iter()
+            .map(|(_, r)| RaySet::new(&p.bvh, &sc.tris, r))
+            .collect();
+        let kmax = ks.iter().copied().max().unwrap_or(0);
+        let planes = if kmax > 0 {
+            golden::planegen::generate(&p.bvh, &sc.tris, kmax).map_err(|e| e.to_string())?
+        } else {
+            vec![]
+        };
+        for &k in &ks {
+            for &b in &bs {
+                let t0 = Instant::now();
+                let mut ex = ExactTester::new(&p.bvh, &planes, k);
+                let exact = run_machine(
+                    &p,
+                    &mut sets,
+                    &mut ex,
+                    Some(&BundlePath::Exact),
+                    b,
+                    a.width,
+                    a.height,
+                )
+                .map_err(|e| format!("{name} exact K{k} B{b}: {e}"))?;
+                done += 1;
+                eprintln!(
+                    "[{done}/{total}] {name} exact K{k} B{b}: {:.1} s",
+                    t0.elapsed().as_secs_f64()
+                );
+                for f in &fmts {
+                    let t0 = Instant::now();
+                    let (mut t, pair) = tester(&p, f, &planes, k)?;
+                    if b > 1 && pair.is_none() {
+                        return Err(format!("{}: no bundle pair for this format", f.name()));
+                    }
+                    let st = run_machine(
+                        &p,
+                        &mut sets,
+                        t.as_mut(),
+                        pair.as_ref(),
+                        b,
+                        a.width,
+                        a.height,
+                    )
+                    .map_err(|e| format!("{name} {} K{k} B{b}: {e}", f.name()))?;
+                    let mods = modules(f, k, b)?;
+                    let area = mods
+                        .iter()
+                        .map(|m| area.get(m).cloned())
+                        .collect::<Option<Vec<_>>>()
+                        .map(|v| v.iter().fold(Area::default(), |acc, x| acc.plus(x)));
+                    done += 1;
+                    eprintln!(
+                        "[{done}/{total}] {name} {} K{k} B{b}: {:.1} s",
+                        f.name(),
+                        t0.elapsed().as_secs_f64()
+                    );
+                    recs.push(Rec {
+                        scene: name.clone(),
+                        format: *f,
+                        k,
+                        b,
+                        st,
+                        exact,
+                        modules: mods,
+                        area,
+                    });
+                }
+            }
+        }
+    }
+    Ok(recs)
+}
+
+/// Indices of the records on the Pareto front of (cost, badness): no other record is at most as costly
+/// and at most as bad, and strictly better in one. Records without a cost are left out.
+pub fn pareto(pts: &[(f64, f64)]) -> Vec<usize> {
+    let mut front: Vec<usize> = (0..pts.len())
+        .filter(|&i| {
+            !pts.iter().enumerate().any(|(j, q)| {
+                j != i && q.0 <= pts[i].0 && q.1 <= pts[i].1 && (q.0 < pts[i].0 || q.1 < pts[i].1)
+            })
+        })
+        .collect();
+    front.sort_by(|&a, &b| pts[a].0.total_cmp(&pts[b].0));
+    front
+}
+
+/// CSV header of `sweep.csv`.
+pub const CSV_HEADER: &str = "scene,datapath,format,bits,k,bundle,rays,box_tests,pair_tests,pair_ideal,pair_decided,cycles_per_ray,exact_cycles_per_ray,extra_cycles,tri_tests,exact_tri_tests,extra_tri_tests,false_box_hits,true_box_misses,false_hit_rate,plane_culls,mean_looseness,looseness_of_diagonal,hits,modules,latency,ice40_lut4,ice40_depth,xilinx_lut,xilinx_dsp,pareto_accuracy,pareto_speed";
+
+/// Writes `sweep.csv`, `sweep.md` and the charts under `out`; returns the markdown.
+pub fn report(recs: &[Rec], out: &Path, diag: &HashMap<String, f64>) -> Result<String, String> {
+    std::fs::create_dir_all(out).map_err(|e| format!("{}: {e}", out.display()))?;
+    let mut csv = format!("{CSV_HEADER}\n");
+    let mut md = String::from("| scene | format | K | B | cycles/ray | extra cycles vs exact | extra triangle tests | false-hit rate | looseness (of diagonal) | iCE40 LUT4 | 7-series LUT + DSP | latency | front |\n|---|---|---|---|---|---|---|---|---|---|---|---|---|\n");
+    let scenes: Vec<&String> = {
+        let mut v: Vec<&String> = recs.iter().map(|r| &r.scene).collect();
+        v.dedup();
+        v
+    };
+    for scene in scenes {
+        let rs: Vec<&Rec> = recs.iter().filter(|r| &r.scene == scene).collect();
+        let with_area: Vec<usize> = (0..rs.len()).filter(|&i| rs[i].area.is_some()).collect();
+        let cost = |i: usize| rs[i].area.as_ref().map_or(0.0, |a| a.ice40_lut4 as f64);
+        let acc: Vec<(f64, f64)> = with_area
+            .iter()
+            .map(|&i| (cost(i), rs[i].extra_cycles()))
+            .collect();
+        let spd: Vec<(f64, f64)> = with_area
+            .iter()
+            .map(|&i| (cost(i), rs[i].st.cycles_per_ray()))
+            .collect();
+        let fa: Vec<usize> = pareto(&acc).into_iter().map(|j| with_area[j]).collect();
+        let fs: Vec<usize> = pareto(&spd).into_iter().map(|j| with_area[j]).collect();
+        let d = diag.get(scene).copied().unwrap_or(1.0);
+        for (i, r) in rs.iter().enumerate() {
+            let a = r.area.clone();
+            let cell = |f: &dyn Fn(&Area) -> String| a.as_ref().map_or(String::new(), f);
+            let _ = writeln!(
+                csv,
+                "{},{},{},{},{},{},{},{},{},{},{},{:.4},{:.4},{:.6},{},{},{:.6},{},{},{:.6},{},{:.6e},{:.6e},{},{},{},{},{},{},{},{},{}",
+                r.scene,
+                r.format.datapath(),
+                r.format.name(),
+                r.format.bits(),
+                r.k,
+                r.b,
+                r.st.rays,
+                r.st.box_tests,
+                r.st.pair_tests,
+                r.st.pair_ideal,
+                r.st.pair_decided,
+                r.st.cycles_per_ray(),
+                r.exact.cycles_per_ray(),
+                r.extra_cycles(),
+                r.st.tri_tests,
+                r.exact.tri_tests,
+                r.extra_tris(),
+                r.st.false_box_hits,
+                r.st.true_box_misses,
+                r.st.false_hit_rate(),
+                r.st.plane_culls,
+                r.st.mean_looseness(),
+                r.st.mean_looseness() / d,
+                r.st.hits,
+                r.modules.join("+"),
+                cell(&|a| a.latency.to_string()),
+                cell(&|a| a.ice40_lut4.to_string()),
+                cell(&|a| a.ice40_depth.to_string()),
+                cell(&|a| a.xilinx_lut.to_string()),
+                cell(&|a| a.xilinx_dsp.to_string()),
+                fa.contains(&i),
+                fs.contains(&i),
+            );
+            let front = match (fa.contains(&i), fs.contains(&i)) {
+                (true, true) => "accuracy, speed",
+                (true, false) => "accuracy",
+                (false, true) => "speed",
+                _ => "",
+            };
+            let _ = writeln!(
+                md,
+                "| {} | {} | {} | {} | {:.2} | {:+.2}% | {:+.2}% | {:.3}% | {:.2e} | {} | {} | {} | {front} |",
+                r.scene,
+                r.format.name(),
+                r.k,
+                r.b,
+                r.st.cycles_per_ray(),
+                100.0 * r.extra_cycles(),
+                100.0 * r.extra_tris(),
+                100.0 * r.st.false_hit_rate(),
+                r.st.mean_looseness() / d,
+                cell(&|a| a.ice40_lut4.to_string()),
+                cell(&|a| format!("{} + {}", a.xilinx_lut, a.xilinx_dsp)),
+                cell(&|a| a.latency.to_string()),
+            );
+        }
+        let pts = |f: &dyn Fn(&Rec) -> f64, front: &[usize]| -> Vec<Point> {
+            with_area
+                .iter()
+                .map(|&i| Point {
+                    x: cost(i),
+                    y: f(rs[i]),
+                    label: rs[i].label(),
+                    group: format!("{} K{}", rs[i].format.datapath(), rs[i].k),
+                    front: front.contains(&i),
+                })
+                .collect()
+        };
+        if !with_area.is_empty() {
+            scatter_chart(
+                &out.join(format!("sweep_{}_accuracy.svg", file_stem(scene))),
+                &format!("{scene}: extra tester cycles against area (Pareto front joined)"),
+                "area (iCE40 LUT4, log)",
+                "extra tester cycles vs exact (%)",
+                &pts(&|r| 100.0 * r.extra_cycles(), &fa),
+            )?;
+            scatter_chart(
+                &out.join(format!("sweep_{}_speed.svg", file_stem(scene))),
+                &format!("{scene}: tester cycles per ray against area (Pareto front joined)"),
+                "area (iCE40 LUT4, log)",
+                "tester cycles per ray",
+                &pts(&|r| r.st.cycles_per_ray(), &fs),
+            )?;
+        }
+    }
+    std::fs::write(out.join("sweep.csv"), &csv).map_err(|e| e.to_string())?;
+    let missing: Vec<String> = {
+        let mut m: Vec<String> = recs
+            .iter()
+            .filter(|r| r.area.is_none())
+            .map(|r| r.modules.join("+"))
+            .collect();
+        m.sort();
+        m.dedup();
+        m
+    };
+    if !missing.is_empty() {
+        let _ = writeln!(
+            md,
+            "\nNo synthesis figures for (left out of the charts and fronts): {}. Synthesise them with \
+             `scripts/synth <module>` and add the rows to the area table.",
+            missing.join(", ")
+        );
+    }
+    std::fs::write(out.join("sweep.md"), &md).map_err(|e| e.to_string())?;
+    Ok(md)
+}
+
+/// A file-name-safe form of a scene name (an OBJ path's stem).
+pub fn file_stem(scene: &str) -> String {
+    Path::new(scene)
+        .file_stem()
+        .map_or_else(|| scene.to_string(), |s| s.to_string_lossy().into_owned())
+        .chars()
+        .map(|c| if c.is_ascii_alphanumeric() { c } else { '_' })
+        .collect()
+}
+
+/// `rtu sweep`.
+pub fn run(a: &Args, out: &Path) -> Result<String, String> {
+    let recs = measure(a)?;
+    let mut diag = HashMap::new();
+    for s in list(&a.scenes, |s| Ok(s.to_string()))? {
+        let sc = load_scene(&s, a.seed)?;
+        let b = sc.bounds();
+        diag.insert(s, (b.max - b.min).length());
+    }
+    report(&recs, out, &diag)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn pareto_keeps_exactly_the_undominated_points() {
+        let pts = [
+            (1.0, 5.0),
+            (2.0, 3.0),
+            (3.0, 4.0),
+            (4.0, 1.0),
+            (2.0, 3.0),
+            (5.0, 1.0),
+        ];
+        // (3,4) is dominated by (2,3); (5,1) by (4,1); the two equal (2,3) do not dominate each other.
+        assert_eq!(pareto(&pts), vec![0, 1, 4, 3]);
+    }
+
+    #[test]
+    fn area_table_rejects_bad_rows_and_later_rows_win() {
+        let dir = std::env::temp_dir().join(format!("rtu-area-{}", std::process::id()));
+        std::fs::create_dir_all(&dir).unwrap();
+        let p = dir.join("a.csv");
+        std::fs::write(
+            &p,
+            "module,latency,generic_cells,ice40_lut4,ice40_carry,ice40_ff,ice40_depth,xilinx_lut,xilinx_dsp\nm,4,1,100,0,0,9,50,2\nmodule,latency\nm,4,1,120,0,0,9,60,2\n",
+        )
+        .unwrap();
+        let t = read_area(&p).unwrap();
+        assert_eq!(t["m"].ice40_lut4, 120);
+        std::fs::write(&p, "m,4,1,x,0,0,9,50,2\n").unwrap();
+        let e = read_area(&p).unwrap_err();
+        assert!(e.contains("a.csv:1") && e.contains("`x`"), "{e}");
+    }
+}
