@@ -36,8 +36,13 @@ use crate::error::Error;
 use crate::exact::Ext;
 use crate::geom::{Aabb, Ray};
 use glam::DVec3;
+use std::ops::RangeInclusive;
 
 const AXES: [&str; 3] = ["x", "y", "z"];
+
+/// The grid widths of the format ladder, [`FixFormat::grid`]: one format, and one RTL instance
+/// (`rtl::SlabFixG6` .. `rtl::SlabFixG20`), per width.
+pub const GRID_LADDER: RangeInclusive<u32> = 6..=20;
 
 /// Widths of the fixed-point slab datapath. The RTL block takes the same numbers as const generics.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
@@ -123,7 +128,55 @@ impl FixFormat {
     pub fn presets() -> [FixFormat; 3] {
         [Self::b8(), Self::b12(), Self::b16()]
     }
-    /// Looks a preset up by name (`b8`, `b12`, `b16`) or parses `G,I,FI,T,FT`.
+
+    /// The format of grid width `g` on the format ladder ([`GRID_LADDER`], `6..=20`): one format per grid
+    /// width, so a fit can pick the smallest `G` that a scene needs and still have an RTL instance.
+    ///
+    /// The rule interpolates the three presets (`grid(8) == b8()`, `grid(12) == b12()`,
+    /// `grid(16) == b16()`) and extends them to both sides:
+    ///
+    /// | width | rule | what it trades |
+    /// | --- | --- | --- |
+    /// | `I` | `G + 4` | the multiplier is `(G + 1) x I` bits and the product `G + I + 1 = 2G + 5` bits: area grows as `G^2` |
+    /// | `FI` | `floor(3G / 4) + 2` | the inverse direction's fraction bits: its relative error, so the t slack at a distance of `d` cells is about `d * 2^-FI`. `I - FI = ceil(G / 4) + 2` integer bits remain: a direction component below `2^-(I-FI)` of the largest one is "unbounded" (that axis stops constraining t), so the integer part grows slowly with the grid, the fraction takes the rest |
+    /// | `FT` | `clamp(floor(G / 2), 4, 6)` | t resolution, `2^-FT` (scaled) grid cells; 6 as in b12 and b16, since past it the product's own rounding dominates, and every bit costs width in the max/min trees and the outputs |
+    /// | `T` | `G + 2 + FT` | the least `T` with `FT <= T - G - 2` (t spans the grid, [`FixFormat::new`]): the same integer span as all three presets, so `T` is between `G + 6` and `G + 8` |
+    ///
+    /// | G | 6 | 7 | 8 | 9 | 10 | 11 | 12 | 13 | 14 | 15 | 16 | 17 | 18 | 19 | 20 |
+    /// |---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|
+    /// | I | 10 | 11 | 12 | 13 | 14 | 15 | 16 | 17 | 18 | 19 | 20 | 21 | 22 | 23 | 24 |
+    /// | FI | 6 | 7 | 8 | 8 | 9 | 10 | 11 | 11 | 12 | 13 | 14 | 14 | 15 | 16 | 17 |
+    /// | T | 12 | 13 | 14 | 15 | 17 | 18 | 20 | 21 | 22 | 23 | 24 | 25 | 26 | 27 | 28 |
+    /// | FT | 4 | 4 | 4 | 4 | 5 | 5 | 6 | 6 | 6 | 6 | 6 | 6 | 6 | 6 | 6 |
+    ///
+    /// Below `G = 6` a 64-cell grid leaves little to test; above `G = 20` the product passes 45 bits and
+    /// the rust-hdl simulation (which stores values over 32 bits bit by bit) slows down. A `g` outside the
+    /// ladder is an [`Error::BadFormat`].
+    pub fn grid(g: u32) -> Result<Self, Error> {
+        if !GRID_LADDER.contains(&g) {
+            return Err(Error::BadFormat {
+                param: "G (grid bits)",
+                value: g as i64,
+                why: format!(
+                    "the format ladder covers grid widths {}..={}",
+                    GRID_LADDER.start(),
+                    GRID_LADDER.end()
+                ),
+            });
+        }
+        let ft = (g / 2).clamp(4, 6);
+        Self::new(g, g + 4, 3 * g / 4 + 2, g + 2 + ft, ft)
+    }
+
+    /// Every format of the ladder, smallest grid first (`grid(g)` for `g` in [`GRID_LADDER`]).
+    pub fn ladder() -> Vec<Self> {
+        GRID_LADDER
+            .map(|g| Self::grid(g).expect("the ladder's formats are valid"))
+            .collect()
+    }
+
+    /// Looks a preset up by name (`b8`, `b12`, `b16`), a ladder format by grid width (`g6` .. `g20`,
+    /// [`FixFormat::grid`]) or parses `G,I,FI,T,FT`.
     pub fn parse(s: &str) -> Result<Self, Error> {
         match s {
             "b8" => return Ok(Self::b8()),
@@ -131,11 +184,14 @@ impl FixFormat {
             "b16" => return Ok(Self::b16()),
             _ => {}
         }
+        if let Some(g) = s.strip_prefix('g').and_then(|g| g.parse::<u32>().ok()) {
+            return Self::grid(g);
+        }
         let parts: Vec<&str> = s.split(',').collect();
         let names = ["G", "I", "FI", "T", "FT"];
         if parts.len() != 5 {
             return Err(Error::Io(format!(
-                "format `{s}`: expected b8, b12, b16 or five numbers G,I,FI,T,FT"
+                "format `{s}`: expected b8, b12, b16, g6 .. g20 or five numbers G,I,FI,T,FT"
             )));
         }
         let mut v = [0u32; 5];
@@ -559,6 +615,42 @@ mod tests {
         assert_eq!((q.m_lo[0], q.m_hi[0]), (1 << fmt.fi, 1 << fmt.fi));
         assert_eq!(q.m_hi[2], fmt.inv_inf());
         assert!(q.neg[2] && !q.neg[1]);
+    }
+
+    #[test]
+    fn grid_ladder_matches_the_presets_and_validates() {
+        assert_eq!(FixFormat::grid(8).unwrap(), FixFormat::b8());
+        assert_eq!(FixFormat::grid(12).unwrap(), FixFormat::b12());
+        assert_eq!(FixFormat::grid(16).unwrap(), FixFormat::b16());
+        let ladder = FixFormat::ladder();
+        assert_eq!(ladder.len(), GRID_LADDER.count());
+        for (n, f) in ladder.iter().enumerate() {
+            // Every format passes the constructor's checks and the documented rule.
+            let g = f.g;
+            assert_eq!(FixFormat::new(f.g, f.i, f.fi, f.t, f.ft).unwrap(), *f);
+            assert_eq!(f.i, g + 4, "{}", f.name());
+            assert!(f.t >= g + 6 && f.t <= g + 8, "{}", f.name());
+            assert!(f.ft <= f.fi.min(f.t - g - 2), "{}", f.name());
+            assert_eq!(FixFormat::parse(&format!("g{g}")).unwrap(), *f);
+            if n > 0 {
+                let p = ladder[n - 1];
+                assert_eq!(g, p.g + 1);
+                assert!(f.fi >= p.fi && f.ft >= p.ft && f.t > p.t, "{}", f.name());
+            }
+        }
+        assert_eq!(ladder[0].name(), "g6_i10f6_t12f4");
+        assert_eq!(ladder[ladder.len() - 1].name(), "g20_i24f17_t28f6");
+    }
+
+    #[test]
+    fn grid_outside_the_ladder_is_an_error() {
+        for g in [0, 2, 5, 21, 24, 100] {
+            let e = FixFormat::grid(g).unwrap_err();
+            assert!(matches!(e, Error::BadFormat { .. }), "{e:?}");
+            assert!(e.to_string().contains("6..=20"), "{e}");
+        }
+        assert!(FixFormat::parse("g5").is_err());
+        assert!(FixFormat::parse("g21").is_err());
     }
 
     #[test]

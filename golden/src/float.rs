@@ -84,6 +84,46 @@ impl FloatFormat {
     /// An 8-bit format (E4M3 with IEEE infinities), small enough to test exhaustively.
     pub const E4M3: FloatFormat = FloatFormat { e: 4, m: 3 };
 
+    /// The float format ladder: every format with an instantiated float slab tester
+    /// (`rtl::SLAB_FLOAT_LADDER`), narrowest first (by total width `1 + E + M`, then by `E`), so a fit can
+    /// take the first one that holds a scene's range and meets its precision.
+    ///
+    /// | E | M | widths | why |
+    /// | --- | --- | --- | --- |
+    /// | 5 | 3 ..= 10 | 9 ..= 16 | binary16's range (normal `2^-14 ..= 65504`): scenes of tens to thousands of units; every fraction width up to binary16 |
+    /// | 6 | 3 ..= 10, 12, 15 | 10 ..= 17, 19, 22 | range `2^-30 ..= 2^32`, for scenes or t ranges beyond binary16's; 12 and 15 bridge to E8 |
+    /// | 8 | 7, 10, 12, 15, 23 | 16 ..= 32 | binary32's range: bfloat16 up to binary32 (E8 with fewer than 7 fraction bits buys range nobody needs at that precision) |
+    ///
+    /// `E >= 5` and `M >= 3`: the RTL needs `E >= 4` (its working significand lives in the format's own
+    /// width); E4 tops out at 240 with M = 3 (too little range for a scene in world units), and below
+    /// `M = 3` a box is quantised to fewer than four steps per octave. It includes the five formats
+    /// instantiated before the ladder: e8m23, e8m15, e8m7, e5m10, e6m5.
+    pub const LADDER: [FloatFormat; 23] = [
+        FloatFormat { e: 5, m: 3 },
+        FloatFormat { e: 5, m: 4 },
+        FloatFormat { e: 6, m: 3 },
+        FloatFormat { e: 5, m: 5 },
+        FloatFormat { e: 6, m: 4 },
+        FloatFormat { e: 5, m: 6 },
+        FloatFormat { e: 6, m: 5 },
+        FloatFormat { e: 5, m: 7 },
+        FloatFormat { e: 6, m: 6 },
+        FloatFormat { e: 5, m: 8 },
+        FloatFormat { e: 6, m: 7 },
+        FloatFormat { e: 5, m: 9 },
+        FloatFormat { e: 6, m: 8 },
+        FloatFormat { e: 5, m: 10 },
+        FloatFormat { e: 6, m: 9 },
+        FloatFormat { e: 8, m: 7 },
+        FloatFormat { e: 6, m: 10 },
+        FloatFormat { e: 6, m: 12 },
+        FloatFormat { e: 8, m: 10 },
+        FloatFormat { e: 8, m: 12 },
+        FloatFormat { e: 6, m: 15 },
+        FloatFormat { e: 8, m: 15 },
+        FloatFormat { e: 8, m: 23 },
+    ];
+
     /// Parses `fp32`, `fp16`, `bf16` or `eXmY` (e.g. `e8m15`), case-insensitive.
     pub fn parse(s: &str) -> Result<Self, Error> {
         let l = s.to_ascii_lowercase();
@@ -522,6 +562,78 @@ impl FloatFormat {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn ladder_is_valid_sorted_and_holds_the_instantiated_formats() {
+        let l = FloatFormat::LADDER;
+        for f in l {
+            assert_eq!(FloatFormat::new(f.e, f.m).unwrap(), f);
+            assert_eq!(FloatFormat::parse(&f.name()).unwrap(), f);
+            assert!(f.e >= 5 && f.m >= 3, "{}", f.name());
+        }
+        for w in l.windows(2) {
+            assert!(
+                (w[0].width(), w[0].e) < (w[1].width(), w[1].e),
+                "{} before {}",
+                w[0].name(),
+                w[1].name()
+            );
+        }
+        for f in [
+            FloatFormat::FP32,
+            FloatFormat::E8M15,
+            FloatFormat::BF16,
+            FloatFormat::FP16,
+            FloatFormat { e: 6, m: 5 },
+        ] {
+            assert!(l.contains(&f), "{}", f.name());
+        }
+        for e in [5, 6] {
+            for m in 3..=10 {
+                assert!(l.contains(&FloatFormat { e, m }), "e{e}m{m}");
+            }
+        }
+    }
+
+    /// The float slab model works in every ladder format: a box ahead of the ray is hit with an interval
+    /// enclosing the exact one, a box beside it is missed, and the whole datapath is conservative.
+    #[test]
+    fn slab_model_works_in_every_ladder_format() {
+        use crate::exact::slab_exact;
+        use crate::geom::{Aabb, Ray};
+        use crate::slab_float::{judge_float, quantize_box, quantize_ray, slab_float};
+        use glam::DVec3;
+        let r = Ray::new(
+            DVec3::new(-3.3, 0.7, 1.1),
+            DVec3::new(1.0, 0.05, -0.1),
+            0.0,
+            f64::INFINITY,
+        )
+        .unwrap();
+        let ahead = Aabb::new(DVec3::new(10.0, 0.0, -1.0), DVec3::new(12.5, 2.0, 1.0)).unwrap();
+        let beside = Aabb::new(DVec3::new(10.0, 5.0, -1.0), DVec3::new(12.5, 7.0, 1.0)).unwrap();
+        for f in FloatFormat::LADDER {
+            let fr = quantize_ray(&f, &r).unwrap();
+            for (b, hit) in [(ahead, true), (beside, false)] {
+                let out = slab_float(&f, &fr, &quantize_box(&f, &b).unwrap());
+                assert_eq!(out.hit, hit, "{} {out:?}", f.name());
+                let v = judge_float(&f, &out, &slab_exact(&r, &b));
+                assert!(
+                    !matches!(v, crate::check::Verdict::Violation(_)),
+                    "{}: {v:?}",
+                    f.name()
+                );
+                if hit {
+                    let (t0, t1) = (f.to_f64(out.t_entry), f.to_f64(out.t_exit));
+                    assert!(
+                        t0 <= 13.3 && t1 >= 14.3 && t0 > 10.0 && t1 < 20.0,
+                        "{}: [{t0}, {t1}]",
+                        f.name()
+                    );
+                }
+            }
+        }
+    }
 
     #[test]
     fn fp32_layout_matches_native_f32() {

@@ -29,11 +29,11 @@ pub use slab_fix::{SlabFix, SLAB_FIX_LATENCY, TAG_BITS};
 pub use slab_float::{SlabFloat, SLAB_FLOAT_LATENCY};
 pub use slab_io::SlabIo;
 
-/// The slab tester for `golden::fixed::FixFormat::b8()`.
+/// The slab tester for `golden::fixed::FixFormat::b8()` (the same type as the ladder's `SlabFixG8`).
 pub type SlabFixB8 = SlabFix<8, 9, 12, 14>;
-/// The slab tester for `golden::fixed::FixFormat::b12()`.
+/// The slab tester for `golden::fixed::FixFormat::b12()` (the same type as `SlabFixG12`).
 pub type SlabFixB12 = SlabFix<12, 13, 16, 20>;
-/// The slab tester for `golden::fixed::FixFormat::b16()`.
+/// The slab tester for `golden::fixed::FixFormat::b16()` (the same type as `SlabFixG16`).
 pub type SlabFixB16 = SlabFix<16, 17, 20, 24>;
 
 /// The chained slab + cull-plane tester over b12 with the default plane format (`N = 8`, `FD = 11`,
@@ -44,16 +44,11 @@ pub type PlaneFixB8<const K: usize> = plane_fix::PlaneFix<8, 9, 12, 14, 8, 11, 2
 /// The same over b16 (`FD = 14`).
 pub type PlaneFixB16<const K: usize> = plane_fix::PlaneFix<16, 17, 20, 24, 8, 17, 28, 29, 26, K>;
 
-/// The float slab tester in binary32.
-pub type SlabFloatE8M23 = SlabFloat<8, 23, 32>;
-/// The float slab tester in E8M15.
-pub type SlabFloatE8M15 = SlabFloat<8, 15, 24>;
-/// The float slab tester in bfloat16.
-pub type SlabFloatE8M7 = SlabFloat<8, 7, 16>;
-/// The float slab tester in binary16.
-pub type SlabFloatE5M10 = SlabFloat<5, 10, 16>;
-/// The float slab tester in the small 12-bit E6M5.
-pub type SlabFloatE6M5 = SlabFloat<6, 5, 12>;
+// The format ladder: `SlabFixG6` .. `SlabFixG20`, `SlabFloatE5M3` .. `SlabFloatE8M23` (binary32 is
+// `SlabFloatE8M23`, bfloat16 `SlabFloatE8M7`, binary16 `SlabFloatE5M10`), `SLAB_FIX_LADDER`,
+// `SLAB_FLOAT_LADDER`.
+pub mod ladder;
+pub use ladder::*;
 
 /// Runs `$body` with `$t` bound to the `SlabFix` type of a preset format, or returns an error for a
 /// format without an instantiated block (const generics need the widths at compile time).
@@ -80,7 +75,43 @@ macro_rules! with_slab_fix {
     }};
 }
 
-/// The float formats with an instantiated float slab tester.
+/// Like [`with_slab_fix!`] for every format on the grid ladder
+/// (`golden::fixed::FixFormat::grid(g)` for `g` in 6..=20, which includes the presets b8, b12, b16), or
+/// returns an error for a format without an instantiated block (const generics need the widths at compile
+/// time). `$body` is compiled once per ladder format.
+#[macro_export]
+macro_rules! with_slab_fix_ladder {
+    ($fmt:expr, $t:ident, $body:block) => {{
+        let f: &golden::fixed::FixFormat = $fmt;
+        $crate::slab_fix_ladder!(__with_slab_fix_arms!(f, $t, $body))
+    }};
+}
+
+/// The dispatch arms of `with_slab_fix!` (callback of `slab_fix_ladder!`).
+#[doc(hidden)]
+#[macro_export]
+macro_rules! __with_slab_fix_arms {
+    ($f:ident, $t:ident, $body:block
+        [$(($g:literal, $d:literal, $i:literal, $tb:literal, $alias:ident)),* $(,)?]) => {
+        match $f.g {
+            $(
+                $g if *$f == golden::fixed::FixFormat::grid($g).expect("a ladder format") => {
+                    type $t = $crate::$alias;
+                    Ok($body)
+                }
+            )*
+            _ => Err(format!(
+                "no RTL instance for format {}: the RTL is instantiated for the grid ladder g6 .. g20 \
+                 (golden::fixed::FixFormat::grid; b8, b12, b16 among them) \
+                 (add a type alias in rtl/src/ladder.rs for another)",
+                $f.name()
+            )),
+        }
+    };
+}
+
+/// The float formats of the main job, `export::export_all` and the synthesis report: the five
+/// instantiated before the format ladder. Every format of [`SLAB_FLOAT_LADDER`] has a block.
 pub const SLAB_FLOAT_FORMATS: [golden::float::FloatFormat; 5] = [
     golden::float::FloatFormat::FP32,
     golden::float::FloatFormat::E8M15,
@@ -123,6 +154,40 @@ macro_rules! with_slab_float {
             )),
         }
     }};
+}
+
+/// Like [`with_slab_float!`] for every float format of the ladder
+/// ([`SLAB_FLOAT_LADDER`], `golden::float::FloatFormat::LADDER`), or returns an error for a format without
+/// an instantiated block. `$body` is compiled once per ladder format.
+#[macro_export]
+macro_rules! with_slab_float_ladder {
+    ($f:expr, $t:ident, $body:block) => {{
+        let f: &golden::float::FloatFormat = $f;
+        $crate::slab_float_ladder!(__with_slab_float_arms!(f, $t, $body))
+    }};
+}
+
+/// The dispatch arms of `with_slab_float!` (callback of `slab_float_ladder!`).
+#[doc(hidden)]
+#[macro_export]
+macro_rules! __with_slab_float_arms {
+    ($f:ident, $t:ident, $body:block
+        [$(($e:literal, $m:literal, $n:literal, $alias:ident)),* $(,)?]) => {
+        match ($f.e, $f.m) {
+            $(
+                ($e, $m) => {
+                    type $t = $crate::$alias;
+                    Ok($body)
+                }
+            )*
+            _ => Err(format!(
+                "no RTL instance for float format {}: instantiated are the float ladder \
+                 (E5 M3..=10, E6 M3..=10, 12, 15, E8 M7, 10, 12, 15, 23; golden::float::FloatFormat::LADDER) \
+                 (add a type alias in rtl/src/ladder.rs for another)",
+                $f.name()
+            )),
+        }
+    };
 }
 
 pub mod fp_recip;
