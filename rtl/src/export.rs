@@ -5,8 +5,8 @@
 //! can be synthesised together.
 //!
 //! [`export_all`] writes the slab testers and the cull-plane testers that the synthesis report compares
-//! (`scripts/synth plane_`): the table option `PlaneFix` and the fraction option `PlaneFrac` over b12 and
-//! b16 with 1 and 4 planes, and the float `PlaneFloat` with 1 plane.
+//! (`scripts/synth plane_`): the table option `PlaneFix` over b8, b12 and b16 and the fraction option
+//! `PlaneFrac` over b12 and b16 with 1 and 4 planes, and the float `PlaneFloat` with 1 plane.
 
 use golden::fixed::FixFormat;
 use golden::plane_fix::CullFixFormat;
@@ -45,6 +45,22 @@ pub fn slab_float_module(f: &golden::float::FloatFormat) -> String {
 /// Verilog of the float slab tester for an instantiated format.
 pub fn slab_float_verilog(f: &golden::float::FloatFormat) -> Result<String, String> {
     crate::with_slab_float!(f, S, {
+        let mut uut = S::new();
+        verilog_named(&mut uut, &slab_float_module(f))
+    })
+}
+
+/// Verilog of the fixed slab tester for any format of the grid ladder (`FixFormat::grid`), for the fit.
+pub fn slab_fix_verilog_ladder(fmt: &FixFormat) -> Result<String, String> {
+    crate::with_slab_fix_ladder!(fmt, S, {
+        let mut uut = S::new(fmt);
+        verilog_named(&mut uut, &slab_fix_module(fmt))
+    })
+}
+
+/// Verilog of the float slab tester for any format of the float ladder, for the fit.
+pub fn slab_float_verilog_ladder(f: &golden::float::FloatFormat) -> Result<String, String> {
+    crate::with_slab_float_ladder!(f, S, {
         let mut uut = S::new();
         verilog_named(&mut uut, &slab_float_module(f))
     })
@@ -115,16 +131,20 @@ pub fn plane_frac_module(cf: &CullFixFormat, k: usize) -> String {
     )
 }
 
-/// `(module, Verilog, latency)` of the cull-plane testers in the synthesis report: both options of the
-/// fixed tester over b12 and b16 with 1 and 4 planes, the float tester with 1 plane.
+/// `(module, Verilog, latency)` of the cull-plane testers in the synthesis report: the table option over
+/// b8, b12 and b16 and the fraction option over b12 and b16, each with 1 and 4 planes; the float tester
+/// with 1 plane.
 pub fn plane_verilog() -> Vec<(String, String, usize)> {
     fn named<S: crate::SlabIo>(module: String, mut uut: S) -> (String, String, usize) {
         let v = verilog_named(&mut uut, &module);
         (module, v, S::LATENCY)
     }
+    let b8 = CullFixFormat::over(FixFormat::b8());
     let b12 = CullFixFormat::over(FixFormat::b12());
     let b16 = CullFixFormat::over(FixFormat::b16());
     let mut v = vec![
+        named(plane_fix_module(&b8, 1), crate::PlaneFixB8::<1>::new(&b8)),
+        named(plane_fix_module(&b8, 4), crate::PlaneFixB8::<4>::new(&b8)),
         named(
             plane_fix_module(&b12, 1),
             crate::PlaneFixB12::<1>::new(&b12),

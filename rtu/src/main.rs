@@ -7,6 +7,7 @@ mod bundle_cmd;
 mod campaign_cmd;
 mod chart;
 mod cull_cmd;
+mod fit_cmd;
 mod float_check;
 mod main_job;
 mod run_bundles;
@@ -14,6 +15,7 @@ mod run_vectors;
 mod scene;
 mod stability_cmd;
 mod sweep_cmd;
+mod synth;
 
 use clap::{Parser, Subcommand};
 use std::path::PathBuf;
@@ -119,6 +121,10 @@ enum Cmd {
     /// The bundle pair's conservativeness campaign: random and adversarial bundles on every datapath
     /// against the exact per-ray results and the exact oracle (writes bundle_campaign.md).
     BundleCampaign(bundle_cmd::CampaignArgs),
+    /// The smallest fixed-point and float formats whose slab tester meets a budget of extra tester cycles
+    /// on each scene and ray set, their area and latency against fp32, and their Verilog (writes
+    /// fit/fit.csv, fit/fit.md, fit/*.v; --synth runs Yosys on fitted formats not in the area table).
+    Fit(fit_cmd::Args),
     /// The failure cases of the textbook methods across the three testers, naive against ours (writes
     /// stability.csv and stability.md).
     Stability,
@@ -279,6 +285,7 @@ fn main() -> ExitCode {
             print!("{t}");
             std::fs::write(cli.out.join("bundle_scenes.md"), t).map_err(|e| e.to_string())
         }),
+        Cmd::Fit(a) => fit_cmd::run(&a, &cli.out).map(|t| print!("{t}")),
         Cmd::Stability => stability_cmd::run(&cli.out).map(|t| print!("{t}")),
         Cmd::Sweep(a) => sweep_cmd::run(&a, &cli.out).map(|t| print!("{t}")),
         Cmd::BundleCampaign(a) => bundle_cmd::campaign(&a, &cli.out).map(|t| print!("{t}")),

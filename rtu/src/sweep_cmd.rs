@@ -344,6 +344,28 @@ pub fn tester(
     })
 }
 
+/// Runs one machine over one ray set (`name`: primary, bounce or shadow) of a prepared scene.
+#[allow(clippy::too_many_arguments)]
+pub fn run_set(
+    p: &Prepared,
+    name: &str,
+    set: &mut RaySet,
+    t: &mut dyn NodeTester,
+    pair: Option<&BundlePath>,
+    b: usize,
+    w: usize,
+    h: usize,
+) -> Result<SceneStats, String> {
+    let built = bundles(name, set.rays, b, w, h, p.diag)?;
+    let mut m = Machine {
+        tester: t,
+        pair: if b > 1 { pair } else { None },
+        rebound: true,
+    };
+    traverse(&p.bvh, &p.sc.tris, set, &built, &mut m, || {})
+        .map_err(|e| format!("{name} rays: {e}"))
+}
+
 /// Runs one machine over every ray set of a prepared scene, summing the counts.
 pub fn run_machine(
     p: &Prepared,
@@ -356,16 +378,7 @@ pub fn run_machine(
 ) -> Result<SceneStats, String> {
     let mut total = SceneStats::default();
     for (i, set) in sets.iter_mut().enumerate() {
-        let name = p.sets[i].0;
-        let built = bundles(name, set.rays, b, w, h, p.diag)?;
-        let mut m = Machine {
-            tester: t,
-            pair: if b > 1 { pair } else { None },
-            rebound: true,
-        };
-        let st = traverse(&p.bvh, &p.sc.tris, set, &built, &mut m, || {})
-            .map_err(|e| format!("{name} rays: {e}"))?;
-        total.add(&st);
+        total.add(&run_set(p, p.sets[i].0, set, t, pair, b, w, h)?);
     }
     Ok(total)
 }
