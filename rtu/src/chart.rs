@@ -113,6 +113,15 @@ pub fn scatter_chart(
         .configure_mesh()
         .x_desc(x_label)
         .y_desc(y_label)
+        .x_labels(8)
+        .x_label_formatter(&|v| {
+            if *v >= 1000.0 {
+                format!("{:.0}k", v / 1000.0)
+            } else {
+                format!("{v:.0}")
+            }
+        })
+        .max_light_lines(1)
         .draw()
         .map_err(|e| err(&e))?;
     let mut groups: Vec<&str> = pts.iter().map(|p| p.group.as_str()).collect();

@@ -75,7 +75,7 @@ pub fn run(a: &Args, out: &Path) -> Result<String, String> {
     }
     let dir = out.join("fit");
     std::fs::create_dir_all(&dir).map_err(|e| format!("{}: {e}", dir.display()))?;
-    let mut area = read_area(&a.area)?;
+    let mut area = read_area(&crate::sweep_cmd::area_path(&a.area))?;
     let fit_area = dir.join("area.csv");
     for (k, v) in read_area(&fit_area)? {
         area.entry(k).or_insert(v);

@@ -191,13 +191,24 @@ fn main() -> ExitCode {
                         .iter()
                         .any(|r| r.violations > 0 || r.rtl_model_mismatches > 0)
                     {
-                        Err(
+                        return Err(
                             "conservativeness violations or RTL/model mismatches: see above"
                                 .to_string(),
-                        )
-                    } else {
-                        Ok(())
+                        );
                     }
+                    // The small version of the sweep: speed against accuracy on the triangle room.
+                    let sweep = sweep_cmd::Args::small();
+                    let dir = cli.out.join("sweep");
+                    sweep_cmd::run(&sweep, &dir).map(|t| {
+                        println!(
+                            "\nSpeed against accuracy (small sweep: {}):\n\n{t}",
+                            sweep.describe()
+                        );
+                        println!(
+                            "wrote {}/sweep.csv, sweep.md and the charts sweep_*.svg",
+                            dir.display()
+                        );
+                    })
                 })
                 .and_then(|x| x)
         }

@@ -54,8 +54,9 @@ pub struct Args {
     pub sets: String,
     /// Secondary-ray origins are moved off the surface by this fraction of the scene's diagonal (see
     /// `golden::scene::secondary_rays_offset`: a unit cannot tell an origin nearer than its resolution
-    /// from the surface).
-    #[arg(long, default_value_t = 1e-7)]
+    /// from the surface). The default is of the order of Waechter and Binder's self-intersection offset
+    /// (Ray Tracing Gems, ch. 6, 2019: 256 binary32 ulps of the hit point, about 3e-5 of its magnitude).
+    #[arg(long, default_value_t = 1e-5)]
     pub offset: f64,
     /// Seed of the scenes and the secondary rays.
     #[arg(long, default_value_t = 1)]
@@ -63,6 +64,34 @@ pub struct Args {
     /// Synthesis table (the CSV `scripts/synth` writes; rows of several runs may be concatenated).
     #[arg(long, default_value = "docs/sweep/area.csv")]
     pub area: PathBuf,
+}
+
+impl Args {
+    /// The main job's small sweep: the room, 16x12 primary rays and their secondary rays, b8/b12/b16 and
+    /// fp16/fp32, no planes or one, single rays or 2x2 bundles.
+    pub fn small() -> Self {
+        Args {
+            scenes: "room".into(),
+            fixed: "b8,b12,b16".into(),
+            float: "fp32,fp16".into(),
+            k: "0,1".into(),
+            bundle: "1,4".into(),
+            width: 16,
+            height: 12,
+            sets: "primary,bounce,shadow".into(),
+            offset: 1e-5,
+            seed: 1,
+            area: PathBuf::from("docs/sweep/area.csv"),
+        }
+    }
+
+    /// The arguments as `rtu sweep` options.
+    pub fn describe(&self) -> String {
+        format!(
+            "rtu sweep --scenes {} --fixed {} --float {} --k {} --bundle {} --width {} --height {}",
+            self.scenes, self.fixed, self.float, self.k, self.bundle, self.width, self.height
+        )
+    }
 }
 
 /// A datapath and format of the sweep.
@@ -123,6 +152,20 @@ impl Area {
             xilinx_lut: self.xilinx_lut + o.xilinx_lut,
             xilinx_dsp: self.xilinx_dsp + o.xilinx_dsp,
         }
+    }
+}
+
+/// The area table at `path`, or, for a relative path that does not exist from here, the same path in the
+/// source tree this binary was built from (so `cargo run` from any folder finds `docs/sweep/area.csv`).
+pub fn area_path(path: &Path) -> PathBuf {
+    if path.exists() || path.is_absolute() {
+        return path.to_path_buf();
+    }
+    let src = Path::new(env!("CARGO_MANIFEST_DIR")).join("..").join(path);
+    if src.exists() {
+        src
+    } else {
+        path.to_path_buf()
     }
 }
 
@@ -432,7 +475,7 @@ pub fn measure(a: &Args) -> Result<Vec<Rec>, String> {
     if a.width == 0 || a.height == 0 {
         return Err("--width and --height must be at least 1".into());
     }
-    let area = read_area(&a.area)?;
+    let area = read_area(&area_path(&a.area))?;
     let scenes = list(&a.scenes, |s| Ok(s.to_string()))?;
     let set_names = list(&a.sets, |s| Ok(s.to_string()))?;
     let total = scenes.len() * ks.len() * bs.len() * (fmts.len() + 1);

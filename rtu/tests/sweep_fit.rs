@@ -1,0 +1,206 @@
+//! `rtu sweep` and `rtu fit` end to end on small runs: the CSV has a row per configuration with the
+//! exact machine's figures beside it, a single-ray format never does less work than the exact tester,
+//! the Pareto flags follow the area table given, the fit's formats meet the budget and their Verilog is
+//! written; bad options and malformed scene files are errors that name what is wrong.
+
+use std::collections::HashMap;
+use std::path::{Path, PathBuf};
+use std::process::Command;
+
+fn rtu(args: &[&str]) -> std::process::Output {
+    Command::new(env!("CARGO_BIN_EXE_rtu"))
+        .args(args)
+        .output()
+        .expect("rtu runs")
+}
+
+fn tmp(name: &str) -> PathBuf {
+    let d = std::env::temp_dir().join(format!("rtu-sweep-fit-{name}-{}", std::process::id()));
+    std::fs::create_dir_all(&d).unwrap();
+    d
+}
+
+/// Rows of a CSV as header -> value maps.
+fn rows(p: &Path) -> Vec<HashMap<String, String>> {
+    let text = std::fs::read_to_string(p).unwrap();
+    let mut lines = text.lines();
+    let head: Vec<String> = lines.next().unwrap().split(',').map(String::from).collect();
+    lines
+        .map(|l| {
+            head.iter()
+                .cloned()
+                .zip(l.split(',').map(String::from))
+                .collect()
+        })
+        .collect()
+}
+
+const AREA_HEADER: &str =
+    "module,latency,generic_cells,ice40_lut4,ice40_carry,ice40_ff,ice40_depth,xilinx_lut,xilinx_dsp\n";
+
+#[test]
+fn sweep_measures_every_configuration_and_marks_the_front() {
+    let dir = tmp("sweep");
+    // A made-up area table: b8's slab cheapest, fp16's dearest; no pair rows, so bundles have no cost.
+    let area = dir.join("area.csv");
+    std::fs::write(
+        &area,
+        format!(
+            "{AREA_HEADER}slab_fix_g8_i12f8_t14f4,4,1,100,0,0,10,50,1\nslab_float_e5m10,9,1,1000,0,0,30,500,1\n"
+        ),
+    )
+    .unwrap();
+    let out = dir.join("out");
+    let o = rtu(&[
+        "--out",
+        out.to_str().unwrap(),
+        "sweep",
+        "--scenes",
+        "soup",
+        "--width",
+        "8",
+        "--height",
+        "6",
+        "--fixed",
+        "b8",
+        "--float",
+        "fp16",
+        "--k",
+        "0,1",
+        "--bundle",
+        "1,4",
+        "--area",
+        area.to_str().unwrap(),
+    ]);
+    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    let r = rows(&out.join("sweep.csv"));
+    assert_eq!(r.len(), 2 * 2 * 2, "one row per format, K and B");
+    for row in &r {
+        let num = |k: &str| row[k].parse::<f64>().unwrap();
+        assert!(num("rays") > 48.0, "primary and secondary rays: {row:?}");
+        if row["bundle"] == "1" {
+            // A conservative single-ray tester keeps every node the exact one keeps.
+            assert!(
+                num("cycles_per_ray") >= num("exact_cycles_per_ray"),
+                "{row:?}"
+            );
+            assert_eq!(row["pair_tests"], "0");
+        } else {
+            assert!(
+                num("pair_tests") > 0.0 && num("pair_decided") <= num("pair_ideal"),
+                "{row:?}"
+            );
+        }
+    }
+    let find = |f: &str, k: &str, b: &str| {
+        r.iter()
+            .find(|x| x["format"] == f && x["k"] == k && x["bundle"] == b)
+            .unwrap()
+    };
+    // The cheapest point is always on both fronts; the dearest is on the accuracy front only if it is
+    // at least as accurate; configurations without area are on neither.
+    let b8 = find("b8", "0", "1");
+    let fp16 = find("fp16", "0", "1");
+    assert_eq!(b8["pareto_accuracy"], "true");
+    assert_eq!(b8["pareto_speed"], "true");
+    let acc = |x: &HashMap<String, String>| x["extra_cycles"].parse::<f64>().unwrap();
+    assert_eq!(fp16["pareto_accuracy"] == "true", acc(fp16) < acc(b8));
+    assert_eq!(find("b8", "1", "1")["pareto_accuracy"], "false");
+    assert_eq!(find("b8", "1", "1")["ice40_lut4"], "");
+    for chart in ["sweep_soup_accuracy.svg", "sweep_soup_speed.svg"] {
+        let svg = std::fs::read_to_string(out.join(chart)).unwrap();
+        assert!(svg.contains("b8 K0 B1"), "{chart} labels the front");
+    }
+    std::fs::remove_dir_all(&dir).unwrap();
+}
+
+#[test]
+fn fit_meets_the_budget_and_writes_verilog() {
+    let dir = tmp("fit");
+    let out = dir.join("out");
+    let run = |budget: &str| {
+        let o = rtu(&[
+            "--out",
+            out.to_str().unwrap(),
+            "fit",
+            "--scenes",
+            "mesh",
+            "--width",
+            "8",
+            "--height",
+            "6",
+            "--budget",
+            budget,
+            "--area",
+            "/nonexistent/area.csv",
+        ]);
+        assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+        rows(&out.join("fit").join("fit.csv"))
+    };
+    // Any budget: each fitted row is within it; a huge one takes the narrowest ladder formats.
+    for (budget, want) in [
+        ("1000", Some(("slab_fix_g6_", "slab_float_e5m3"))),
+        ("0.5", None),
+    ] {
+        let r = run(budget);
+        assert_eq!(
+            r.len(),
+            4 * 2,
+            "primary, bounce, shadow, all x fixed, float"
+        );
+        for row in r.iter().filter(|x| !x["format"].is_empty()) {
+            let x: f64 = row["extra_cycles"].parse().unwrap();
+            assert!(
+                x * 100.0 <= budget.parse::<f64>().unwrap() + 1e-9,
+                "{row:?}"
+            );
+            assert!(out
+                .join("fit")
+                .join(format!("{}.v", row["module"]))
+                .exists());
+        }
+        if let Some((fix, float)) = want {
+            assert!(r
+                .iter()
+                .filter(|x| x["datapath"] == "fixed")
+                .all(|x| x["module"].starts_with(fix)));
+            assert!(r
+                .iter()
+                .filter(|x| x["datapath"] == "float")
+                .all(|x| x["module"] == float));
+        }
+    }
+    assert!(out.join("fit").join("slab_float_e8m23.v").exists());
+    std::fs::remove_dir_all(&dir).unwrap();
+}
+
+#[test]
+fn bad_options_and_scene_files_are_named_errors() {
+    let dir = tmp("bad");
+    let obj = dir.join("broken.obj");
+    std::fs::write(&obj, "v 0 0 0\nv 1 0 0\nv 0 1 nan\nf 1 2 3\n").unwrap();
+    let out = dir.join("out");
+    let o = out.to_str().unwrap();
+    for (args, want) in [
+        (
+            vec!["sweep", "--scenes", obj.to_str().unwrap()],
+            "broken.obj",
+        ),
+        (vec!["sweep", "--scenes", "attic"], "unknown scene `attic`"),
+        (vec!["sweep", "--k", "9"], "--k 9"),
+        (vec!["sweep", "--bundle", "3"], "--bundle 3"),
+        (
+            vec!["sweep", "--sets", "primary,sideways"],
+            "ray set `sideways`",
+        ),
+        (vec!["sweep", "--offset", "nan"], "--offset"),
+        (vec!["fit", "--budget=-1"], "--budget -1"),
+    ] {
+        let mut a = vec!["--out", o];
+        a.extend(args.iter());
+        let r = rtu(&a);
+        let err = String::from_utf8_lossy(&r.stderr);
+        assert!(!r.status.success() && err.contains(want), "{args:?}: {err}");
+    }
+    std::fs::remove_dir_all(&dir).unwrap();
+}
