@@ -3,6 +3,7 @@
 //! against the ideal, and tester cycles against testing the rays one by one. The traversal and its checks
 //! are [`golden::bundle_trav`]; the bundling [`golden::bundle_build`].
 
+use crate::list;
 use golden::bundle_build::{build, tiles, BuildParams, Built, SplitMetric};
 use golden::bundle_fix::BundleFixFormat;
 use golden::bundle_trav::{traverse_all, BundlePath, BundleStats, ExactHits, TravOptions};
@@ -61,14 +62,6 @@ struct Rec {
     metric: String,
     per: f64,
     st: BundleStats,
-}
-
-fn list<T>(s: &str, f: impl Fn(&str) -> Result<T, String>) -> Result<Vec<T>, String> {
-    s.split(',')
-        .map(str::trim)
-        .filter(|x| !x.is_empty())
-        .map(f)
-        .collect()
 }
 
 fn num<T: std::str::FromStr>(s: &str, what: &str) -> Result<T, String> {

@@ -152,7 +152,11 @@ enum Cmd {
     },
 }
 
-fn list<T>(s: &str, parse: impl Fn(&str) -> Result<T, String>) -> Result<Vec<T>, String> {
+/// The items of a comma-separated option, each parsed (blank items skipped).
+pub(crate) fn list<T>(
+    s: &str,
+    parse: impl Fn(&str) -> Result<T, String>,
+) -> Result<Vec<T>, String> {
     s.split(',')
         .map(str::trim)
         .filter(|x| !x.is_empty())

@@ -6,6 +6,7 @@
 //! tester cycles against area, cycles per ray against area) with the Pareto front drawn.
 
 use crate::chart::{scatter_chart, Point};
+use crate::list;
 use golden::bundle_build::{build, tiles, BuildParams, Built};
 use golden::bundle_fix::BundleFixFormat;
 use golden::bundle_trav::BundlePath;
@@ -424,14 +425,6 @@ pub fn run_machine(
         total.add(&run_set(p, p.sets[i].0, set, t, pair, b, w, h)?);
     }
     Ok(total)
-}
-
-fn list<T>(s: &str, f: impl Fn(&str) -> Result<T, String>) -> Result<Vec<T>, String> {
-    s.split(',')
-        .map(str::trim)
-        .filter(|x| !x.is_empty())
-        .map(f)
-        .collect()
 }
 
 /// Parses the format lists of the arguments.
