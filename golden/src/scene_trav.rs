@@ -91,6 +91,22 @@ impl FixTester {
     }
 }
 
+impl FixTester {
+    /// Checks that every ray of `rays` fits the format (its grid and direction widths), so that
+    /// [`NodeTester::test`] cannot fail on them; the error names the first ray that does not.
+    pub fn check_rays(&self, rays: &[Ray]) -> Result<(), Error> {
+        for (i, r) in rays.iter().enumerate() {
+            self.map
+                .quantize_ray(r)
+                .and_then(|_| plane_fix::quantize_dir(&self.cf, r))
+                .map_err(|e| {
+                    Error::Io(format!("ray {i} does not fit {}: {e}", self.cf.base.name()))
+                })?;
+        }
+        Ok(())
+    }
+}
+
 impl NodeTester for FixTester {
     fn test(&mut self, ray: &Ray, node: usize) -> Option<(f64, f64)> {
         let r = NodeFixRay {
@@ -138,6 +154,20 @@ impl FloatTester {
             nodes.push(n);
         }
         Ok(FloatTester { cf, k, nodes })
+    }
+}
+
+impl FloatTester {
+    /// The float counterpart of [`FixTester::check_rays`].
+    pub fn check_rays(&self, rays: &[Ray]) -> Result<(), Error> {
+        for (i, r) in rays.iter().enumerate() {
+            crate::slab_float::quantize_ray(&self.cf.f, r)
+                .and_then(|_| plane_float::quantize_dir(&self.cf, r))
+                .map_err(|e| {
+                    Error::Io(format!("ray {i} does not fit {}: {e}", self.cf.f.name()))
+                })?;
+        }
+        Ok(())
     }
 }
 
@@ -315,9 +345,12 @@ fn better(t: &num_rational::BigRational, i: usize, best: &Option<Hit>) -> bool {
     }
 }
 
-/// A configuration: the single-ray tester, the pair (`None`: single rays only) and re-bounding.
+/// A configuration: the single-ray tester and how many planes it tests per node (with none, a cull of a
+/// node whose box the ray hits is a false miss, an error), the pair (`None`: single rays only) and
+/// re-bounding.
 pub struct Machine<'t> {
     pub tester: &'t mut dyn NodeTester,
+    pub planes: usize,
     pub pair: Option<&'t BundlePath>,
     pub rebound: bool,
 }
@@ -399,10 +432,17 @@ pub fn traverse(
                         (Some((lo, hi)), true) => {
                             let s = crate::slab_ref::slab_ref(ray, bx);
                             st.true_box_hits += 1;
+                            // Within the ray's own range: a saturated code (t = inf) is no looser there.
+                            let (lo, hi) = (lo.max(ray.t_min), hi.min(ray.t_max));
                             st.looseness_sum +=
                                 (s.t_entry - lo).max(0.0) + (hi - s.t_exit.min(ray.t_max)).max(0.0);
                         }
                         (None, true) => {
+                            if m.planes == 0 {
+                                return Err(at(&format!(
+                                    "ray {i} hits the box but the slab tester culled it (false miss)"
+                                )));
+                            }
                             st.plane_culls += 1;
                             if let Some(&t) = bvh
                                 .subtree_tris(node)
@@ -510,6 +550,7 @@ mod tests {
             &singles,
             &mut Machine {
                 tester: &mut ex,
+                planes: 0,
                 pair: None,
                 rebound: false,
             },
@@ -542,6 +583,7 @@ mod tests {
                 b,
                 &mut Machine {
                     tester: t,
+                    planes: 0,
                     pair,
                     rebound: true,
                 },
@@ -575,19 +617,28 @@ mod tests {
         let (sc, bvh, rays, _) = setup();
         let mut set = RaySet::new(&bvh, &sc.tris, &rays);
         let singles = tiles(&rays, 16, 12, 1).unwrap();
-        let e = traverse(
-            &bvh,
-            &sc.tris,
-            &mut set,
-            &singles,
-            &mut Machine {
-                tester: &mut CullsAll,
-                pair: None,
-                rebound: false,
-            },
-            || {},
-        )
-        .unwrap_err();
-        assert!(e.to_string().contains("culled although it hits"), "{e}");
+        let mut run = |planes| {
+            traverse(
+                &bvh,
+                &sc.tris,
+                &mut set,
+                &singles,
+                &mut Machine {
+                    tester: &mut CullsAll,
+                    planes,
+                    pair: None,
+                    rebound: false,
+                },
+                || {},
+            )
+            .unwrap_err()
+            .to_string()
+        };
+        // With planes, a cull is allowed unless it hides a triangle hit; without, any cull of a node the
+        // ray's box test hits is a false miss.
+        let e = run(1);
+        assert!(e.contains("culled although it hits"), "{e}");
+        let e = run(0);
+        assert!(e.contains("false miss"), "{e}");
     }
 }

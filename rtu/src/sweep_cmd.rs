@@ -62,9 +62,10 @@ pub struct Args {
     /// Seed of the scenes and the secondary rays.
     #[arg(long, default_value_t = 1)]
     pub seed: u64,
-    /// Synthesis table (the CSV `scripts/synth` writes; rows of several runs may be concatenated).
-    #[arg(long, default_value = "docs/sweep/area.csv")]
-    pub area: PathBuf,
+    /// Synthesis table (the CSV `scripts/synth` writes; rows of several runs may be concatenated);
+    /// default: docs/sweep/area.csv of this source tree, when there is one.
+    #[arg(long)]
+    pub area: Option<PathBuf>,
 }
 
 impl Args {
@@ -82,7 +83,7 @@ impl Args {
             sets: "primary,bounce,shadow".into(),
             offset: 1e-5,
             seed: 1,
-            area: PathBuf::from("docs/sweep/area.csv"),
+            area: None,
         }
     }
 
@@ -115,7 +116,7 @@ impl Format {
             Format::Float(_) => "float",
         }
     }
-    /// Total bits of a coordinate.
+    /// Bits of a stored coordinate: the grid width `G` (fixed), the whole word `1 + E + M` (float).
     pub fn bits(&self) -> u32 {
         match self {
             Format::Fix(f) => f.g,
@@ -156,27 +157,29 @@ impl Area {
     }
 }
 
-/// The area table at `path`, or, for a relative path that does not exist from here, the same path in the
-/// source tree this binary was built from (so `cargo run` from any folder finds `docs/sweep/area.csv`).
-pub fn area_path(path: &Path) -> PathBuf {
-    if path.exists() || path.is_absolute() {
-        return path.to_path_buf();
+/// The area table: the file given (which must exist), or by default `docs/sweep/area.csv` from here or
+/// in the source tree this binary was built from (so `cargo run` from any folder finds it); an empty
+/// table when neither exists.
+pub fn load_area(given: Option<&Path>) -> Result<HashMap<String, Area>, String> {
+    if let Some(p) = given {
+        if !p.exists() {
+            return Err(format!("--area {}: no such file", p.display()));
+        }
+        return read_area(p);
     }
-    let src = Path::new(env!("CARGO_MANIFEST_DIR")).join("..").join(path);
-    if src.exists() {
-        src
-    } else {
-        path.to_path_buf()
+    let here = PathBuf::from("docs/sweep/area.csv");
+    let src = Path::new(env!("CARGO_MANIFEST_DIR")).join("../docs/sweep/area.csv");
+    match [here, src].into_iter().find(|p| p.exists()) {
+        Some(p) => read_area(&p),
+        None => Ok(HashMap::new()),
     }
 }
 
 /// Reads a synthesis CSV (header `module,latency,generic_cells,ice40_lut4,ice40_carry,ice40_ff,
 /// ice40_depth,xilinx_lut,xilinx_dsp,...`; repeated header lines are skipped; a later row of a module
-/// replaces an earlier one). A missing file gives an empty table.
+/// replaces an earlier one).
 pub fn read_area(path: &Path) -> Result<HashMap<String, Area>, String> {
-    let Ok(text) = std::fs::read_to_string(path) else {
-        return Ok(HashMap::new());
-    };
+    let text = std::fs::read_to_string(path).map_err(|e| format!("{}: {e}", path.display()))?;
     let mut t = HashMap::new();
     for (n, line) in text.lines().enumerate() {
         let f: Vec<&str> = line.split(',').map(str::trim).collect();
@@ -374,7 +377,11 @@ pub fn tester(
                 CullFixFormat::try_over(*x)
             }
             .map_err(e)?;
-            let t = FixTester::new(cf, map.clone(), &p.bvh, &p.sc.tris, planes, k).map_err(e)?;
+            let t = FixTester::new(cf, map, &p.bvh, &p.sc.tris, planes, k).map_err(e)?;
+            for (name, rays) in &p.sets {
+                t.check_rays(rays)
+                    .map_err(|x| format!("{}: {name} {x}", f.name()))?;
+            }
             let pair = BundleFixFormat::over(*x)
                 .ok()
                 .map(|bf| BundlePath::Fix(bf, map));
@@ -383,27 +390,38 @@ pub fn tester(
         Format::Float(x) => {
             let t = FloatTester::new(CullFloatFormat::over(*x), &p.bvh, &p.sc.tris, planes, k)
                 .map_err(e)?;
+            for (name, rays) in &p.sets {
+                t.check_rays(rays)
+                    .map_err(|x| format!("{}: {name} {x}", f.name()))?;
+            }
             (Box::new(t), Some(BundlePath::Float(*x)))
         }
     })
 }
 
+/// What a machine run needs besides the tester: planes per node, bundle size, image size.
+#[derive(Clone, Copy, Debug)]
+pub struct RunCfg {
+    pub k: usize,
+    pub b: usize,
+    pub w: usize,
+    pub h: usize,
+}
+
 /// Runs one machine over one ray set (`name`: primary, bounce or shadow) of a prepared scene.
-#[allow(clippy::too_many_arguments)]
 pub fn run_set(
     p: &Prepared,
     name: &str,
     set: &mut RaySet,
     t: &mut dyn NodeTester,
     pair: Option<&BundlePath>,
-    b: usize,
-    w: usize,
-    h: usize,
+    c: RunCfg,
 ) -> Result<SceneStats, String> {
-    let built = bundles(name, set.rays, b, w, h, p.diag)?;
+    let built = bundles(name, set.rays, c.b, c.w, c.h, p.diag)?;
     let mut m = Machine {
         tester: t,
-        pair: if b > 1 { pair } else { None },
+        planes: c.k,
+        pair: if c.b > 1 { pair } else { None },
         rebound: true,
     };
     traverse(&p.bvh, &p.sc.tris, set, &built, &mut m, || {})
@@ -416,13 +434,11 @@ pub fn run_machine(
     sets: &mut [RaySet],
     t: &mut dyn NodeTester,
     pair: Option<&BundlePath>,
-    b: usize,
-    w: usize,
-    h: usize,
+    c: RunCfg,
 ) -> Result<SceneStats, String> {
     let mut total = SceneStats::default();
     for (i, set) in sets.iter_mut().enumerate() {
-        total.add(&run_set(p, p.sets[i].0, set, t, pair, b, w, h)?);
+        total.add(&run_set(p, p.sets[i].0, set, t, pair, c)?);
     }
     Ok(total)
 }
@@ -442,8 +458,9 @@ pub fn formats(fixed: &str, float: &str) -> Result<Vec<Format>, String> {
     Ok(v)
 }
 
-/// Measures every configuration on every scene; returns the records (progress lines on stderr).
-pub fn measure(a: &Args) -> Result<Vec<Rec>, String> {
+/// Measures every configuration on every scene; returns the records and each scene's diagonal (progress
+/// lines on stderr).
+pub fn measure(a: &Args) -> Result<(Vec<Rec>, HashMap<String, f64>), String> {
     let fmts = formats(&a.fixed, &a.float)?;
     let ks = list(&a.k, |s| {
         let k: usize = s
@@ -468,15 +485,23 @@ pub fn measure(a: &Args) -> Result<Vec<Rec>, String> {
     if a.width == 0 || a.height == 0 {
         return Err("--width and --height must be at least 1".into());
     }
-    let area = read_area(&area_path(&a.area))?;
-    let scenes = list(&a.scenes, |s| Ok(s.to_string()))?;
+    let area = load_area(a.area.as_deref())?;
+    let mut scenes: Vec<String> = vec![];
+    for s in list(&a.scenes, |s| Ok(s.to_string()))? {
+        if scenes.contains(&s) {
+            return Err(format!("--scenes: `{s}` is listed twice"));
+        }
+        scenes.push(s);
+    }
     let set_names = list(&a.sets, |s| Ok(s.to_string()))?;
     let total = scenes.len() * ks.len() * bs.len() * (fmts.len() + 1);
     let mut done = 0;
     let mut recs = vec![];
+    let mut diag = HashMap::new();
     for name in &scenes {
         let sc = load_scene(name, a.seed)?;
         let p = Prepared::new(&sc, a.width, a.height, a.seed, &set_names, a.offset)?;
+        diag.insert(name.clone(), p.diag);
         let mut sets: Vec<RaySet> = p
             .sets
             .iter()
@@ -491,17 +516,15 @@ pub fn measure(a: &Args) -> Result<Vec<Rec>, String> {
         for &k in &ks {
             for &b in &bs {
                 let t0 = Instant::now();
-                let mut ex = ExactTester::new(&p.bvh, &planes, k);
-                let exact = run_machine(
-                    &p,
-                    &mut sets,
-                    &mut ex,
-                    Some(&BundlePath::Exact),
+                let cfg = RunCfg {
+                    k,
                     b,
-                    a.width,
-                    a.height,
-                )
-                .map_err(|e| format!("{name} exact K{k} B{b}: {e}"))?;
+                    w: a.width,
+                    h: a.height,
+                };
+                let mut ex = ExactTester::new(&p.bvh, &planes, k);
+                let exact = run_machine(&p, &mut sets, &mut ex, Some(&BundlePath::Exact), cfg)
+                    .map_err(|e| format!("{name} exact K{k} B{b}: {e}"))?;
                 done += 1;
                 eprintln!(
                     "[{done}/{total}] {name} exact K{k} B{b}: {:.1} s",
@@ -513,16 +536,8 @@ pub fn measure(a: &Args) -> Result<Vec<Rec>, String> {
                     if b > 1 && pair.is_none() {
                         return Err(format!("{}: no bundle pair for this format", f.name()));
                     }
-                    let st = run_machine(
-                        &p,
-                        &mut sets,
-                        t.as_mut(),
-                        pair.as_ref(),
-                        b,
-                        a.width,
-                        a.height,
-                    )
-                    .map_err(|e| format!("{name} {} K{k} B{b}: {e}", f.name()))?;
+                    let st = run_machine(&p, &mut sets, t.as_mut(), pair.as_ref(), cfg)
+                        .map_err(|e| format!("{name} {} K{k} B{b}: {e}", f.name()))?;
                     let mods = modules(f, k, b)?;
                     let area = mods
                         .iter()
@@ -549,7 +564,7 @@ pub fn measure(a: &Args) -> Result<Vec<Rec>, String> {
             }
         }
     }
-    Ok(recs)
+    Ok((recs, diag))
 }
 
 /// Indices of the records on the Pareto front of (cost, badness): no other record is at most as costly
@@ -567,7 +582,7 @@ pub fn pareto(pts: &[(f64, f64)]) -> Vec<usize> {
 }
 
 /// CSV header of `sweep.csv`.
-pub const CSV_HEADER: &str = "scene,datapath,format,bits,k,bundle,rays,box_tests,pair_tests,pair_ideal,pair_decided,cycles_per_ray,exact_cycles_per_ray,extra_cycles,tri_tests,exact_tri_tests,extra_tri_tests,false_box_hits,true_box_misses,false_hit_rate,plane_culls,mean_looseness,looseness_of_diagonal,hits,modules,latency,ice40_lut4,ice40_depth,xilinx_lut,xilinx_dsp,pareto_accuracy,pareto_speed";
+pub const CSV_HEADER: &str = "scene,datapath,format,coord_bits,k,bundle,rays,box_tests,pair_tests,pair_ideal,pair_decided,cycles_per_ray,exact_cycles_per_ray,extra_cycles,tri_tests,exact_tri_tests,extra_tri_tests,false_box_hits,true_box_misses,false_hit_rate,plane_culls,mean_looseness,looseness_of_diagonal,hits,modules,latency,ice40_lut4,ice40_depth,xilinx_lut,xilinx_dsp,pareto_accuracy,pareto_speed";
 
 /// Writes `sweep.csv`, `sweep.md` and the charts under `out`; returns the markdown.
 pub fn report(recs: &[Rec], out: &Path, diag: &HashMap<String, f64>) -> Result<String, String> {
@@ -720,13 +735,7 @@ pub fn file_stem(scene: &str) -> String {
 
 /// `rtu sweep`.
 pub fn run(a: &Args, out: &Path) -> Result<String, String> {
-    let recs = measure(a)?;
-    let mut diag = HashMap::new();
-    for s in list(&a.scenes, |s| Ok(s.to_string()))? {
-        let sc = load_scene(&s, a.seed)?;
-        let b = sc.bounds();
-        diag.insert(s, (b.max - b.min).length());
-    }
+    let (recs, diag) = measure(a)?;
     report(&recs, out, &diag)
 }
 

@@ -24,7 +24,7 @@ fn ltp_length(text: &str) -> Option<u64> {
             let i = l.find("(length=")? + 8;
             l[i..].split(')').next()?.parse().ok()
         })
-        .last()
+        .next_back()
 }
 
 fn yosys(script: &str, log: &Path) -> Result<(), String> {
