@@ -92,7 +92,10 @@ pub fn scatter_chart(
     pts: &[Point],
 ) -> Result<(), String> {
     let err = |e: &dyn std::fmt::Display| format!("chart {}: {e}", path.display());
-    if pts.iter().any(|p| p.x.is_nan() || p.x <= 0.0 || !p.y.is_finite()) {
+    if pts
+        .iter()
+        .any(|p| p.x.is_nan() || p.x <= 0.0 || !p.y.is_finite())
+    {
         return Err(format!(
             "chart {}: every point needs a positive cost and a finite value",
             path.display()
