@@ -581,8 +581,9 @@ pub fn pareto(pts: &[(f64, f64)]) -> Vec<usize> {
     front
 }
 
-/// CSV header of `sweep.csv`.
-pub const CSV_HEADER: &str = "scene,datapath,format,coord_bits,k,bundle,rays,box_tests,pair_tests,pair_ideal,pair_decided,cycles_per_ray,exact_cycles_per_ray,extra_cycles,tri_tests,exact_tri_tests,extra_tri_tests,false_box_hits,true_box_misses,false_hit_rate,plane_culls,mean_looseness,looseness_of_diagonal,hits,modules,latency,ice40_lut4,ice40_depth,xilinx_lut,xilinx_dsp,pareto_accuracy,pareto_speed";
+/// CSV header of `sweep.csv`. `plane_tests`: plane evaluations (each single-ray test of a node runs its
+/// `K` plane units; the pair tests boxes only).
+pub const CSV_HEADER: &str = "scene,datapath,format,coord_bits,k,bundle,rays,box_tests,plane_tests,pair_tests,pair_ideal,pair_decided,cycles_per_ray,exact_cycles_per_ray,extra_cycles,tri_tests,exact_tri_tests,extra_tri_tests,false_box_hits,true_box_misses,false_hit_rate,plane_culls,mean_looseness,looseness_of_diagonal,hits,modules,latency,ice40_lut4,ice40_depth,xilinx_lut,xilinx_dsp,pareto_accuracy,pareto_speed";
 
 /// Writes `sweep.csv`, `sweep.md` and the charts under `out`; returns the markdown.
 pub fn report(recs: &[Rec], out: &Path, diag: &HashMap<String, f64>) -> Result<String, String> {
@@ -614,7 +615,7 @@ pub fn report(recs: &[Rec], out: &Path, diag: &HashMap<String, f64>) -> Result<S
             let cell = |f: &dyn Fn(&Area) -> String| a.as_ref().map_or(String::new(), f);
             let _ = writeln!(
                 csv,
-                "{},{},{},{},{},{},{},{},{},{},{},{:.4},{:.4},{:.6},{},{},{:.6},{},{},{:.6},{},{:.6e},{:.6e},{},{},{},{},{},{},{},{},{}",
+                "{},{},{},{},{},{},{},{},{},{},{},{},{:.4},{:.4},{:.6},{},{},{:.6},{},{},{:.6},{},{:.6e},{:.6e},{},{},{},{},{},{},{},{},{}",
                 r.scene,
                 r.format.datapath(),
                 r.format.name(),
@@ -623,6 +624,7 @@ pub fn report(recs: &[Rec], out: &Path, diag: &HashMap<String, f64>) -> Result<S
                 r.b,
                 r.st.rays,
                 r.st.box_tests,
+                r.st.box_tests * r.k as u64,
                 r.st.pair_tests,
                 r.st.pair_ideal,
                 r.st.pair_decided,
