@@ -14,7 +14,9 @@ use golden::gen::GenKind;
 use golden::slab_fix::slab_fix;
 use golden::slab_float::slab_float;
 use proptest::test_runner::{Config, TestCaseError, TestRunner};
-use rtl::export::{slab_fix_module, slab_fix_verilog, slab_float_module, slab_float_verilog};
+use rtl::export::{
+    slab_fix_module, slab_fix_verilog_ladder, slab_float_module, slab_float_verilog_ladder,
+};
 use rtl::slab_fix::SlabFixIo;
 use rtl::slab_float::SlabFloatIo;
 use rtl::SlabIo;
@@ -72,7 +74,7 @@ fn every_fixed_ladder_format_dispatches() {
             e.contains("no RTL instance") && e.contains(&f.name()),
             "{e}"
         );
-        assert!(slab_fix_verilog(&f).is_err());
+        assert!(slab_fix_verilog_ladder(&f).is_err());
     }
 }
 
@@ -192,7 +194,7 @@ fn a_block_of_another_ladder_format_is_caught() {
 
 fn fix_verilog<S: SlabFixIo>(fmt: FixFormat, seed: u64) {
     let module = slab_fix_module(&fmt);
-    let v = slab_fix_verilog(&fmt).unwrap();
+    let v = slab_fix_verilog_ladder(&fmt).unwrap();
     assert!(v.contains(&format!("module {module}(")), "{module}");
     let path = tb::verilog_tools::write(&v, &module);
     tb::verilog_tools::lint(&path).unwrap_or_else(|e| panic!("{e}"));
@@ -211,7 +213,7 @@ fn fix_verilog<S: SlabFixIo>(fmt: FixFormat, seed: u64) {
 fn float_verilog<S: SlabFloatIo>(seed: u64) {
     let f = S::format();
     let module = slab_float_module(&f);
-    let v = slab_float_verilog(&f).unwrap();
+    let v = slab_float_verilog_ladder(&f).unwrap();
     assert!(v.contains(&format!("module {module}(")), "{module}");
     let path = tb::verilog_tools::write(&v, &module);
     tb::verilog_tools::lint(&path).unwrap_or_else(|e| panic!("{e}"));
