@@ -92,16 +92,21 @@ impl FixTester {
 }
 
 impl FixTester {
+    /// A world ray as the tester takes it: quantised onto the grid, direction for the planes.
+    fn quantize(&self, r: &Ray) -> Result<NodeFixRay, Error> {
+        Ok(NodeFixRay {
+            ray: self.map.quantize_ray(r)?,
+            dir: plane_fix::quantize_dir(&self.cf, r)?,
+        })
+    }
+
     /// Checks that every ray of `rays` fits the format (its grid and direction widths), so that
     /// [`NodeTester::test`] cannot fail on them; the error names the first ray that does not.
     pub fn check_rays(&self, rays: &[Ray]) -> Result<(), Error> {
         for (i, r) in rays.iter().enumerate() {
-            self.map
-                .quantize_ray(r)
-                .and_then(|_| plane_fix::quantize_dir(&self.cf, r))
-                .map_err(|e| {
-                    Error::Io(format!("ray {i} does not fit {}: {e}", self.cf.base.name()))
-                })?;
+            self.quantize(r).map_err(|e| {
+                Error::Io(format!("ray {i} does not fit {}: {e}", self.cf.base.name()))
+            })?;
         }
         Ok(())
     }
@@ -109,10 +114,9 @@ impl FixTester {
 
 impl NodeTester for FixTester {
     fn test(&mut self, ray: &Ray, node: usize) -> Option<(f64, f64)> {
-        let r = NodeFixRay {
-            ray: self.map.quantize_ray(ray).expect("rays inside the grid"),
-            dir: plane_fix::quantize_dir(&self.cf, ray).expect("valid ray"),
-        };
+        let r = self
+            .quantize(ray)
+            .expect("a ray the format cannot hold: see check_rays");
         let out = plane_fix::node_fix(&self.cf, self.k, &r, &self.nodes[node]);
         out.hit.then(|| {
             (
@@ -155,17 +159,21 @@ impl FloatTester {
         }
         Ok(FloatTester { cf, k, nodes })
     }
-}
 
-impl FloatTester {
+    /// A world ray as the tester takes it: in the format, direction for the planes.
+    fn quantize(&self, r: &Ray) -> Result<NodeFloatRay, Error> {
+        Ok(NodeFloatRay {
+            ray: crate::slab_float::quantize_ray(&self.cf.f, r)?,
+            dir: plane_float::quantize_dir(&self.cf, r)?,
+        })
+    }
+
     /// The float counterpart of [`FixTester::check_rays`].
     pub fn check_rays(&self, rays: &[Ray]) -> Result<(), Error> {
         for (i, r) in rays.iter().enumerate() {
-            crate::slab_float::quantize_ray(&self.cf.f, r)
-                .and_then(|_| plane_float::quantize_dir(&self.cf, r))
-                .map_err(|e| {
-                    Error::Io(format!("ray {i} does not fit {}: {e}", self.cf.f.name()))
-                })?;
+            self.quantize(r).map_err(|e| {
+                Error::Io(format!("ray {i} does not fit {}: {e}", self.cf.f.name()))
+            })?;
         }
         Ok(())
     }
@@ -174,10 +182,9 @@ impl FloatTester {
 impl NodeTester for FloatTester {
     fn test(&mut self, ray: &Ray, node: usize) -> Option<(f64, f64)> {
         let f = &self.cf.f;
-        let r = NodeFloatRay {
-            ray: crate::slab_float::quantize_ray(f, ray).expect("rays in range"),
-            dir: plane_float::quantize_dir(&self.cf, ray).expect("valid ray"),
-        };
+        let r = self
+            .quantize(ray)
+            .expect("a ray the format cannot hold: see check_rays");
         let out = plane_float::node_float(&self.cf, self.k, &r, &self.nodes[node]);
         out.hit
             .then(|| (f.to_f64(out.t_entry), f.to_f64(out.t_exit)))
