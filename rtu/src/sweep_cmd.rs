@@ -39,7 +39,10 @@ pub struct Args {
     /// Float formats (fp32, bf16, fp16, eXmY), comma-separated; empty for none.
     #[arg(long, default_value = "fp32,bf16,fp16")]
     pub float: String,
-    /// Planes per node, comma-separated (0 = the slab tester alone).
+    /// Planes per node, comma-separated (0 = the slab tester alone). Each node's planes are generated
+    /// once, for the largest K listed, and a K-plane tester takes the first K of them, so the figures
+    /// of a smaller K depend on the largest K in the list (`golden::planegen` re-fits parents to the
+    /// children's normals, which depend on how many planes are made).
     #[arg(long, default_value = "0,1,4")]
     pub k: String,
     /// Rays per bundle, comma-separated (1 = single rays; otherwise a square: 4, 16, 64).
