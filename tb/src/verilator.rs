@@ -152,6 +152,10 @@ pub fn build(verilog: &str, module: &str, dir: &Path) -> Result<Harness, String>
         .collect();
     let outputs: Vec<Port> = ports.iter().filter(|p| !p.input).cloned().collect();
     let mdir = dir.join(module);
+    // One harness build at a time in a process: tests of one block family share a test binary, and two of
+    // them may ask for the same module's harness at once (same folder, same files).
+    static BUILD: std::sync::Mutex<()> = std::sync::Mutex::new(());
+    let _one_build = BUILD.lock().unwrap_or_else(|e| e.into_inner());
     std::fs::create_dir_all(&mdir).map_err(|e| format!("{}: {e}", mdir.display()))?;
     let mut h = DefaultHasher::new();
     verilog.hash(&mut h);

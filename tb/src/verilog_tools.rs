@@ -17,7 +17,15 @@ pub fn write(verilog: &str, module: &str) -> PathBuf {
     let dir = crate::out_dir().join("verilog");
     std::fs::create_dir_all(&dir).expect("create out/verilog");
     let path = dir.join(format!("{module}.v"));
-    std::fs::write(&path, verilog).expect("write Verilog");
+    // Written beside and renamed into place, so a test of the same block running at the same time in the
+    // same test binary reads either the old file or the new one, never a half-written one.
+    let tmp = dir.join(format!(
+        ".{module}.v.{}.{:?}",
+        std::process::id(),
+        std::thread::current().id()
+    ));
+    std::fs::write(&tmp, verilog).expect("write Verilog");
+    std::fs::rename(&tmp, &path).expect("rename Verilog into place");
     path
 }
 
@@ -57,11 +65,15 @@ pub fn lint(path: &Path) -> Result<(), String> {
 
 /// Icarus compiles the file: `Err` with its output otherwise.
 pub fn icarus(path: &Path) -> Result<(), String> {
-    let obj = path.with_extension("vvp");
+    // One object file per call: two tests may compile the same module at once.
+    static CALLS: std::sync::atomic::AtomicU64 = std::sync::atomic::AtomicU64::new(0);
+    let n = CALLS.fetch_add(1, std::sync::atomic::Ordering::Relaxed);
+    let obj = path.with_extension(format!("{}.{n}.vvp", std::process::id()));
     let (ok, text) = run(
         "iverilog",
         &["-o".as_ref(), obj.as_os_str(), path.as_os_str()],
     );
+    let _ = std::fs::remove_file(&obj);
     if ok {
         Ok(())
     } else {
