@@ -1,7 +1,7 @@
 //! The exact oracle: the slab test in rational arithmetic on the real-valued inputs.
 //!
 //! Every finite f64 is a dyadic rational, so `BigRational::from_float` represents the inputs exactly and
-//! the oracle's entry and exit are the true ones. Special cases follow [`crate::slab_ref`]: a zero
+//! the oracle's entry and exit are the true ones. Special cases follow [`crate::slab::reference`]: a zero
 //! direction component leaves the axis unconstrained when the origin is inside the closed slab and
 //! misses otherwise; an empty box is never hit.
 

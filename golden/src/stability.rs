@@ -5,48 +5,48 @@
 //! # The naive methods
 //! * **Slab.** The textbook slab test (Kay and Kajiya, SIGGRAPH 1986, written with `inv = 1/d` as in
 //!   Williams et al., "An Efficient and Robust Ray-Box Intersection Algorithm", JGT 2005), in f64
-//!   ([`crate::slab_ref::slab_textbook`]) and rounded to nearest in a float format
-//!   ([`crate::slab_float::slab_float_textbook`]). Williams et al. point out the `0 x inf = NaN` of an origin
+//!   ([`crate::slab::reference::slab_textbook`]) and rounded to nearest in a float format
+//!   ([`crate::slab::float::slab_float_textbook`]). Williams et al. point out the `0 x inf = NaN` of an origin
 //!   on a slab plane with a zero direction component, and Ize ("Robust BVH Ray Traversal", JCGT 2013) that
 //!   round-to-nearest makes a grazing ray's entry overtake its exit; both show up below.
-//! * **Cull planes.** The f64 reference [`crate::plane::clip_ref`] (round to nearest, `t* = -s0 / den`, a
+//! * **Cull planes.** The f64 reference [`crate::plane::clip::clip_ref`] (round to nearest, `t* = -s0 / den`, a
 //!   parallel branch for `den == 0`), and [`clip_textbook`]: the same clip with no parallel branch, letting
 //!   IEEE infinities classify `den = 0` (the parametric clip of Cyrus and Beck, "Generalized two- and
 //!   three-dimensional clipping", Computers & Graphics 1978, as used for rays against convex polyhedra by
 //!   Haines, "Fast Ray-Convex Polyhedron Intersection", Graphics Gems II, 1991 — which keeps the branch; the
 //!   branch-free form is the one that fails).
-//! * **Bundles.** The f64 reference [`crate::bundle::decide_ref`] (the bundle edge test of
-//!   [`crate::bundle`], rounded to nearest), and [`corner_rays_textbook`]: the bundle's corner rays, each
+//! * **Bundles.** The f64 reference [`crate::bundle::edge::decide_ref`] (the bundle edge test of
+//!   [`crate::bundle::edge`], rounded to nearest), and [`corner_rays_textbook`]: the bundle's corner rays, each
 //!   through the textbook slab test, "all hit" when every one hits and "all miss" when none does.
 //!
 //! # What is checked
 //! For every case: the exact oracle gives the answer the catalogue states; the naive method marked wrong
 //! is wrong (a false miss, a culled node the exact clip keeps, a false "all hit" or "all miss", shown
 //! against the exact answer or an exact witness ray); and our models — fixed `b8`, `b12`, `b16` on a grid
-//! over bounds enclosing the case, float `fp32`, `bf16`, `fp16` — are conservative (ARCHITECTURE.md: no
+//! over bounds enclosing the case, float `fp32`, `bf16`, `fp16` — are conservative (no
 //! false miss, an enclosing interval, no node culled that the exact clip keeps, no false "all hit" or "all
 //! miss"). A case on which one of our models is not conservative makes [`table`] return an error: it is a
 //! correctness bug, never a row.
 //!
-//! The slab cases are the named corner cases of the slab testbenches (`tb/tests/slab_fix_corners.rs`,
-//! `tb/tests/slab_float_corners.rs`, which read them from here); the cull-plane and bundle cases were
+//! The slab cases are the named corner cases of the slab testbenches (`tb/tests/slab/fix_corners.rs`,
+//! `tb/tests/slab/float_corners.rs`, which read them from here); the cull-plane and bundle cases were
 //! found by construction and by seeded searches (rays through the line where two planes meet, origins
 //! within an ulp of a plane, rays aimed at box edges with normalised directions) and frozen as literals.
 
-use crate::bundle::{decide_exact, decide_ref, Bundle};
-use crate::check::{judge, Verdict};
+use crate::bundle::edge::{decide_exact, decide_ref, Bundle};
+use crate::slab::check::{judge, Verdict};
 use crate::error::Error;
 use crate::exact::{slab_exact, ExactHit};
-use crate::fixed::{FixFormat, GridMap};
-use crate::float::FloatFormat;
+use crate::format::fixed::{FixFormat, GridMap};
+use crate::format::float::FloatFormat;
 use crate::geom::{Aabb, Ray};
-use crate::plane::{clip_exact, clip_exact_world, clip_ref, region_points, Plane, PlaneNode};
-use crate::slab_ref::slab_textbook;
+use crate::plane::clip::{clip_exact, clip_exact_world, clip_ref, region_points, Plane, PlaneNode};
+use crate::slab::reference::slab_textbook;
 use glam::DVec3;
 
 const INF: f64 = f64::INFINITY;
 
-/// The float formats of the slab testbench's textbook comparison (`tb/tests/slab_float_corners.rs`).
+/// The float formats of the slab testbench's textbook comparison (`tb/tests/slab/float_corners.rs`).
 pub const SLAB_FLOAT_FORMATS: [FloatFormat; 5] = [
     FloatFormat::FP32,
     FloatFormat::E8M15,
@@ -87,7 +87,7 @@ pub struct SlabCase {
     pub hit: bool,
     /// The f64 textbook slab test gets this case wrong.
     pub textbook_f64_wrong: bool,
-    /// The f64 reference [`crate::slab_ref::slab_ref`] (special cases right, round to nearest) gets this
+    /// The f64 reference [`crate::slab::reference::slab_ref`] (special cases right, round to nearest) gets this
     /// case wrong: a grazing ray.
     pub ref_f64_wrong: bool,
     /// The formats of [`SLAB_FLOAT_FORMATS`] in which the float textbook test gets it wrong.
@@ -161,8 +161,8 @@ fn slab(
     }
 }
 
-/// The slab corner cases: the one catalogue of `tb/tests/slab_fix_corners.rs` and
-/// `tb/tests/slab_float_corners.rs`. Each line: name, why, origin, direction, t range, box, then the
+/// The slab corner cases: the one catalogue of `tb/tests/slab/fix_corners.rs` and
+/// `tb/tests/slab/float_corners.rs`. Each line: name, why, origin, direction, t range, box, then the
 /// exact hit, whether the f64 textbook test and the f64 reference are wrong, and the float formats in
 /// which the textbook test is wrong.
 #[rustfmt::skip]
@@ -379,7 +379,7 @@ pub fn bundle_cases() -> Vec<BundleCase> {
 /// special case for `den = 0` (IEEE infinities are meant to do that work). Returns `true` when the node
 /// is culled.
 pub fn clip_textbook(ray: &Ray, node: &PlaneNode) -> bool {
-    let s = crate::slab_ref::slab_ref(ray, &node.bounds);
+    let s = crate::slab::reference::slab_ref(ray, &node.bounds);
     if !s.hit {
         return true;
     }
@@ -483,18 +483,18 @@ pub fn slab_ours(c: &SlabCase) -> Result<Vec<String>, Error> {
     };
     for (name, fmt) in fixed_presets() {
         let map = enclosing_map(fmt, &pts)?;
-        let (_, _, _, v) = crate::check::check_fix(&map, &c.ray, &c.bx)?;
+        let (_, _, _, v) = crate::slab::check::check_fix(&map, &c.ray, &c.bx)?;
         out.push(verdict(name, v)?);
     }
     for (name, f) in FLOAT_PRESETS {
-        let o = crate::slab_float::slab_float(
+        let o = crate::slab::float::slab_float(
             &f,
-            &crate::slab_float::quantize_ray(&f, &c.ray)?,
-            &crate::slab_float::quantize_box(&f, &c.bx)?,
+            &crate::slab::float::quantize_ray(&f, &c.ray)?,
+            &crate::slab::float::quantize_box(&f, &c.bx)?,
         );
         out.push(verdict(
             name,
-            crate::slab_float::judge_float(&f, &o, &exact),
+            crate::slab::float::judge_float(&f, &o, &exact),
         )?);
     }
     Ok(out)
@@ -527,8 +527,8 @@ fn judge_cull(
 /// Our cull-plane models on a case (planes fitted outward to the part of the box on their non-empty side,
 /// as `rtu run --planes` does); an error when one is not conservative.
 pub fn cull_ours(c: &CullCase) -> Result<Vec<String>, Error> {
-    use crate::plane_fix::{self as pf, CullFixFormat, FixNode, NodeFixRay};
-    use crate::plane_float::{self as pl, CullFloatFormat, FloatNode, NodeFloatRay};
+    use crate::plane::fix::{self as pf, CullFixFormat, FixNode, NodeFixRay};
+    use crate::plane::float::{self as pl, CullFloatFormat, FloatNode, NodeFloatRay};
     let b = &c.node.bounds;
     let world_kept = clip_exact_world(&c.ray, &c.node).hit;
     let k = c.node.planes.len();
@@ -571,11 +571,11 @@ pub fn cull_ours(c: &CullCase) -> Result<Vec<String>, Error> {
     for (name, f) in FLOAT_PRESETS {
         let cf = CullFloatFormat::over(f);
         let r = NodeFloatRay {
-            ray: crate::slab_float::quantize_ray(&f, &c.ray)?,
+            ray: crate::slab::float::quantize_ray(&f, &c.ray)?,
             dir: pl::quantize_dir(&cf, &c.ray)?,
         };
         let mut node = FloatNode {
-            b: crate::slab_float::quantize_box(&f, b)?,
+            b: crate::slab::float::quantize_box(&f, b)?,
             ..Default::default()
         };
         for (i, p) in c.node.planes.iter().enumerate() {
@@ -637,7 +637,7 @@ fn bundle_broken(got: (bool, bool), exact: (bool, bool), truth: &[(Ray, bool)]) 
 
 /// Our bundle models on a case; an error when one is not conservative.
 pub fn bundle_ours(c: &BundleCase) -> Result<Vec<String>, Error> {
-    use crate::bundle_fix::{decide_fix, BundleFixFormat};
+    use crate::bundle::fix::{decide_fix, BundleFixFormat};
     let exact = decide_exact(&c.bundle, &c.bx)?;
     let truth = bundle_truth(c);
     let pts = [
@@ -661,7 +661,7 @@ pub fn bundle_ours(c: &BundleCase) -> Result<Vec<String>, Error> {
     for (name, f) in FLOAT_PRESETS {
         judge_one(
             name,
-            crate::bundle_float::decide_float(&f, &c.bundle, &c.bx)?,
+            crate::bundle::float::decide_float(&f, &c.bundle, &c.bx)?,
         )?;
     }
     Ok(out)
@@ -733,7 +733,7 @@ pub fn table() -> Result<Vec<Row>, Error> {
         let ours = slab_ours(&c)?;
         let exact = slab_exact(&c.ray, &c.bx).hit;
         let mut naive = Vec::new();
-        let rf = crate::slab_ref::slab_ref(&c.ray, &c.bx).hit;
+        let rf = crate::slab::reference::slab_ref(&c.ray, &c.bx).hit;
         if rf != exact {
             naive.push(format!("f64 reference: {}", hit_word(rf)));
         }
@@ -743,7 +743,7 @@ pub fn table() -> Result<Vec<Row>, Error> {
         }
         let wrong: Vec<String> = SLAB_FLOAT_FORMATS
             .iter()
-            .filter(|f| crate::slab_float::slab_float_textbook(f, &c.ray, &c.bx) != exact)
+            .filter(|f| crate::slab::float::slab_float_textbook(f, &c.ray, &c.bx) != exact)
             .map(float_label)
             .collect();
         if !wrong.is_empty() {
@@ -899,14 +899,14 @@ mod tests {
                 c.name
             );
             assert_eq!(
-                crate::slab_ref::slab_ref(&c.ray, &c.bx).hit != c.hit,
+                crate::slab::reference::slab_ref(&c.ray, &c.bx).hit != c.hit,
                 c.ref_f64_wrong,
                 "{}: f64 reference",
                 c.name
             );
             for f in SLAB_FLOAT_FORMATS {
                 assert_eq!(
-                    crate::slab_float::slab_float_textbook(&f, &c.ray, &c.bx) != c.hit,
+                    crate::slab::float::slab_float_textbook(&f, &c.ray, &c.bx) != c.hit,
                     c.textbook_float_wrong_in.contains(&f),
                     "{}: float textbook in {}",
                     c.name,
@@ -983,7 +983,7 @@ mod tests {
                 "{}",
                 c.name
             );
-            // The oracle's decision agrees with the witness (Theorems 2a and 2b of crate::bundle).
+            // The oracle's decision agrees with the witness (Theorems 2a and 2b of crate::bundle::edge).
             assert!(
                 !c.exact.0 || c.witness_hits,
                 "{}: all hit, witness misses",

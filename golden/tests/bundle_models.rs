@@ -4,20 +4,20 @@
 //! (run with `--nocapture`).
 
 use glam::DVec3;
-use golden::bundle::{
+use golden::bundle::edge::{
     conditions_hold, decide_exact, exact_box, exact_bundle, ray_hits_exact, ray_hits_ref, Bundle,
     BundleOf, ExactArith, Test,
 };
-use golden::bundle_check::{judge, oracle, truth, Tally};
-use golden::bundle_fix::{self, BundleFixFormat};
-use golden::bundle_float;
-use golden::bundle_gen::{BundleCase, BundleGen};
+use golden::bundle::check::{judge, oracle, truth, Tally};
+use golden::bundle::fix::{self as bundle_fix, BundleFixFormat};
+use golden::bundle::float as bundle_float;
+use golden::bundle::gen::{BundleCase, BundleGen};
 use golden::exact::slab_exact;
-use golden::fixed::GridMap;
-use golden::float::FloatFormat;
-use golden::gen::{GenKind, SlabGen};
+use golden::format::fixed::GridMap;
+use golden::format::float::FloatFormat;
+use golden::slab::gen::{GenKind, SlabGen};
 use golden::geom::{Aabb, Ray};
-use golden::slab_ref::slab_ref;
+use golden::slab::reference::slab_ref;
 use std::time::Instant;
 
 /// Bundles per datapath campaign (each against the exact per-ray results and the exact oracle).
@@ -103,7 +103,7 @@ fn bundle_f64_reference_is_exact_when_every_product_is() {
             max: c.bounds.max.ceil(),
         };
         assert_eq!(
-            golden::bundle::decide_ref(&b, &bx).unwrap(),
+            golden::bundle::edge::decide_ref(&b, &bx).unwrap(),
             decide_exact(&b, &bx).unwrap(),
             "{b:?} {bx:?}"
         );

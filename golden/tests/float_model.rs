@@ -3,8 +3,8 @@
 //! `rtu float-campaign` runs the same comparisons on 10,000,000 pairs per format and operation.
 
 use golden::exact::rat;
-use golden::float::{Class, FloatFormat, Rounding};
-use golden::floatcheck::{check_op, Op};
+use golden::format::float::{Class, FloatFormat, Rounding};
+use golden::format::float_check::{check_op, Op};
 use half::{bf16, f16};
 use rand::{Rng, SeedableRng};
 use rand_pcg::Pcg64;

@@ -1,13 +1,13 @@
 //! Randomised conservativeness of the two cull-plane models against the exact clip, on fitted planes.
 
 use glam::DVec3;
-use golden::check::{judge, Verdict};
-use golden::fixed::{FixFormat, GridMap};
-use golden::float::FloatFormat;
+use golden::slab::check::{judge, Verdict};
+use golden::format::fixed::{FixFormat, GridMap};
+use golden::format::float::FloatFormat;
 use golden::geom::{Aabb, Ray};
-use golden::plane::clip_exact;
-use golden::plane_fix::{self, CullFixFormat, FixNode, NodeFixRay};
-use golden::plane_float::{self, CullFloatFormat, FloatNode, NodeFloatRay};
+use golden::plane::clip::clip_exact;
+use golden::plane::fix::{self as plane_fix, CullFixFormat, FixNode, NodeFixRay};
+use golden::plane::float::{self as plane_float, CullFloatFormat, FloatNode, NodeFloatRay};
 use rand::{Rng, SeedableRng};
 use rand_pcg::Pcg64;
 
@@ -150,11 +150,11 @@ fn float_model_encloses_the_exact_clip() {
         for i in 0..20_000 {
             let c = case(&mut rng);
             let r = NodeFloatRay {
-                ray: golden::slab_float::quantize_ray(&f, &c.ray).unwrap(),
+                ray: golden::slab::float::quantize_ray(&f, &c.ray).unwrap(),
                 dir: plane_float::quantize_dir(&cf, &c.ray).unwrap(),
             };
             let mut node = FloatNode {
-                b: golden::slab_float::quantize_box(&f, &c.bounds).unwrap(),
+                b: golden::slab::float::quantize_box(&f, &c.bounds).unwrap(),
                 ..Default::default()
             };
             for (k, n) in c.normals.iter().enumerate() {

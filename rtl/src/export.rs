@@ -8,9 +8,9 @@
 //! (`scripts/synth plane_`): the table option `PlaneFix` over b8, b12 and b16 and the fraction option
 //! `PlaneFrac` over b12 and b16 with 1 and 4 planes, and the float `PlaneFloat` with 1 plane.
 
-use golden::fixed::FixFormat;
-use golden::plane_fix::CullFixFormat;
-use golden::plane_float::CullFloatFormat;
+use golden::format::fixed::FixFormat;
+use golden::plane::fix::CullFixFormat;
+use golden::plane::float::CullFloatFormat;
 use rust_hdl::prelude::*;
 use std::path::{Path, PathBuf};
 
@@ -38,12 +38,12 @@ pub fn slab_fix_verilog(fmt: &FixFormat) -> Result<String, String> {
 }
 
 /// Module name of the float slab tester for a format, e.g. `slab_float_e8m23`.
-pub fn slab_float_module(f: &golden::float::FloatFormat) -> String {
+pub fn slab_float_module(f: &golden::format::float::FloatFormat) -> String {
     format!("slab_float_{}", f.name())
 }
 
 /// Verilog of the float slab tester for an instantiated format.
-pub fn slab_float_verilog(f: &golden::float::FloatFormat) -> Result<String, String> {
+pub fn slab_float_verilog(f: &golden::format::float::FloatFormat) -> Result<String, String> {
     crate::with_slab_float!(f, S, {
         let mut uut = S::new();
         verilog_named(&mut uut, &slab_float_module(f))
@@ -59,7 +59,7 @@ pub fn slab_fix_verilog_ladder(fmt: &FixFormat) -> Result<String, String> {
 }
 
 /// Verilog of the float slab tester for any format of the float ladder, for the fit.
-pub fn slab_float_verilog_ladder(f: &golden::float::FloatFormat) -> Result<String, String> {
+pub fn slab_float_verilog_ladder(f: &golden::format::float::FloatFormat) -> Result<String, String> {
     crate::with_slab_float_ladder!(f, S, {
         let mut uut = S::new();
         verilog_named(&mut uut, &slab_float_module(f))
@@ -97,18 +97,18 @@ pub fn export_all(dir: &Path) -> std::io::Result<Vec<PathBuf>> {
         write(module, v, lat)?;
     }
     // The fixed bundle pair over the presets.
-    for (module, v, lat) in crate::bundle_fix::bundle_fix_verilog() {
+    for (module, v, lat) in crate::bundle::pair_fix::bundle_fix_verilog() {
         write(module, v, lat)?;
     }
     // The bundle results processor over b12 and b16 (latency: clocks of a decided job).
-    for (module, v, lat) in crate::bundle_split::bundle_split_verilog() {
+    for (module, v, lat) in crate::bundle::split::bundle_split_verilog() {
         write(module, v, lat)?;
     }
     for f in crate::BUNDLE_FLOAT_FORMATS {
         write(
-            crate::bundle_float::bundle_float_module(&f),
-            crate::bundle_float::bundle_float_verilog(&f).expect("instantiated"),
-            crate::bundle_float::BUNDLE_FLOAT_LATENCY,
+            crate::bundle::pair_float::bundle_float_module(&f),
+            crate::bundle::pair_float::bundle_float_verilog(&f).expect("instantiated"),
+            crate::bundle::pair_float::BUNDLE_FLOAT_LATENCY,
         )?;
     }
     std::fs::write(dir.join("latency.csv"), latency)?;
@@ -178,10 +178,10 @@ pub fn plane_verilog() -> Vec<(String, String, usize)> {
             crate::PlaneFracB16::<4>::new(&b16),
         ),
     ];
-    for (f, k) in crate::plane_float_export::PLANE_FLOAT_CONFIGS {
+    for (f, k) in crate::plane::float_export::PLANE_FLOAT_CONFIGS {
         if k == 1 {
-            let m = crate::plane_float_export::plane_float_module(&CullFloatFormat::over(f), k);
-            let text = crate::plane_float_export::plane_float_verilog(&f, k).expect("instantiated");
+            let m = crate::plane::float_export::plane_float_module(&CullFloatFormat::over(f), k);
+            let text = crate::plane::float_export::plane_float_verilog(&f, k).expect("instantiated");
             v.push((m, text, crate::PLANE_FLOAT_LATENCY));
         }
     }
@@ -191,35 +191,35 @@ pub fn plane_verilog() -> Vec<(String, String, usize)> {
 /// Module name of a float unit (`add`, `mul`): format and rounding mode, e.g. `fp_add_e8m23_rd`.
 pub fn fp_unit_module(
     unit: &str,
-    f: &golden::float::FloatFormat,
-    mode: golden::float::Rounding,
+    f: &golden::format::float::FloatFormat,
+    mode: golden::format::float::Rounding,
 ) -> String {
     format!("fp_{unit}_{}_{}", f.name(), mode_suffix(mode))
 }
 
 /// `rne`, `rd` or `ru`.
-pub fn mode_suffix(mode: golden::float::Rounding) -> &'static str {
+pub fn mode_suffix(mode: golden::format::float::Rounding) -> &'static str {
     match mode {
-        golden::float::Rounding::NearestEven => "rne",
-        golden::float::Rounding::Down => "rd",
-        golden::float::Rounding::Up => "ru",
+        golden::format::float::Rounding::NearestEven => "rne",
+        golden::format::float::Rounding::Down => "rd",
+        golden::format::float::Rounding::Up => "ru",
     }
 }
 
 /// Verilog of the float adder `FpAdd<E, M, N>` in `mode`.
 pub fn fp_add_verilog<const E: usize, const M: usize, const N: usize>(
-    mode: golden::float::Rounding,
+    mode: golden::format::float::Rounding,
 ) -> String {
-    let f = golden::float::FloatFormat::new(E as u32, M as u32).expect("valid format");
-    let mut uut = crate::fp_add::FpAdd::<E, M, N>::new(mode);
+    let f = golden::format::float::FloatFormat::new(E as u32, M as u32).expect("valid format");
+    let mut uut = crate::fp::add::FpAdd::<E, M, N>::new(mode);
     verilog_named(&mut uut, &fp_unit_module("add", &f, mode))
 }
 
 /// Verilog of the float multiplier `FpMul<E, M, N>` in `mode`.
 pub fn fp_mul_verilog<const E: usize, const M: usize, const N: usize>(
-    mode: golden::float::Rounding,
+    mode: golden::format::float::Rounding,
 ) -> String {
-    let f = golden::float::FloatFormat::new(E as u32, M as u32).expect("valid format");
-    let mut uut = crate::fp_mul::FpMul::<E, M, N>::new(mode);
+    let f = golden::format::float::FloatFormat::new(E as u32, M as u32).expect("valid format");
+    let mut uut = crate::fp::mul::FpMul::<E, M, N>::new(mode);
     verilog_named(&mut uut, &fp_unit_module("mul", &f, mode))
 }

@@ -2,19 +2,19 @@
 //! vectors and reported as ratios, plus the peak memory of a streamed cross-simulation at two lengths.
 //! Figures go to stdout and `<out>/bench.csv`; nothing here is a pass/fail test.
 
-use golden::fixed::FixFormat;
-use golden::float::FloatFormat;
-use golden::gen::GenKind;
-use golden::slab_fix::slab_fix;
-use golden::slab_float;
-use rtl::slab_fix::SlabFixIo;
+use golden::format::fixed::FixFormat;
+use golden::format::float::FloatFormat;
+use golden::slab::gen::GenKind;
+use golden::slab::fix::slab_fix;
+use golden::slab::float as slab_float;
+use rtl::slab::fix::SlabFixIo;
 use std::fmt::Write as _;
 use std::hint::black_box;
 use std::path::Path;
 use std::time::Instant;
 use tb::dut::PipelinedDut;
 use tb::rtl_sim::SlabFixRtl;
-use tb::slab_tb::in_word;
+use tb::slab::ports::in_word;
 
 #[derive(clap::Args)]
 pub struct Args {
@@ -47,7 +47,7 @@ fn peak_rss_kib() -> Option<u64> {
 
 fn bench_rtl<S: SlabFixIo>(
     fmt: FixFormat,
-    pool: &[(golden::fixed::FixRay, golden::fixed::FixBox)],
+    pool: &[(golden::format::fixed::FixRay, golden::format::fixed::FixBox)],
     n: u64,
 ) -> f64 {
     let mut dut = SlabFixRtl::<S>::new(&fmt);
@@ -158,7 +158,7 @@ pub fn run(a: &Args, out: &Path) -> Result<(), String> {
         let n = a.stream_tests * k;
         let vectors = tb::campaign::slab_vectors(fmt, GenKind::Mixed, 5, n, true);
         rtl::with_slab_fix!(&fmt, S, {
-            tb::slab_tb::xsim(fmt, || S::new(&fmt), &h, vectors, 0, |_| {})
+            tb::slab::ports::xsim(fmt, || S::new(&fmt), &h, vectors, 0, |_| {})
         })??;
         rss.push((n, peak_rss_kib().unwrap_or(0)));
     }

@@ -1,17 +1,17 @@
-//! `rtu bundle-scenes`: ray bundles on scenes with the AllHit / AnyHit pair (issue 5's measurements):
+//! `rtu bundle-scenes`: ray bundles on scenes with the AllHit / AnyHit pair:
 //! per scene, ray set, bundling and datapath, the fraction of bundle-box tests decided without splitting
 //! against the ideal, and tester cycles against testing the rays one by one. The traversal and its checks
-//! are [`golden::bundle_trav`]; the bundling [`golden::bundle_build`].
+//! are [`golden::bundle::traverse`]; the bundling [`golden::bundle::build`].
 
 use crate::list;
-use golden::bundle_build::{build, tiles, BuildParams, Built, SplitMetric};
-use golden::bundle_fix::BundleFixFormat;
-use golden::bundle_trav::{traverse_all, BundlePath, BundleStats, ExactHits, TravOptions};
-use golden::bvh::Bvh;
-use golden::fixed::{FixFormat, GridMap};
-use golden::float::FloatFormat;
+use golden::bundle::build::{build, tiles, BuildParams, Built, SplitMetric};
+use golden::bundle::fix::BundleFixFormat;
+use golden::bundle::traverse::{traverse_all, BundlePath, BundleStats, ExactHits, TravOptions};
+use golden::scene::bvh::Bvh;
+use golden::format::fixed::{FixFormat, GridMap};
+use golden::format::float::FloatFormat;
 use golden::geom::Ray;
-use golden::traverse::{trace, AabbOnly};
+use golden::scene::traverse::{trace, AabbOnly};
 use indicatif::{ProgressBar, ProgressStyle};
 use std::fmt::Write as _;
 use std::path::Path;
@@ -117,7 +117,7 @@ struct Bundling {
 
 fn bundlings(
     prim: &[Ray],
-    sec: &golden::scene::SecondaryRays,
+    sec: &golden::scene::tri_scene::SecondaryRays,
     a: &Args,
     diag: f64,
     tile_sizes: &[usize],
@@ -182,11 +182,11 @@ pub fn scenes(a: &Args, out: &Path) -> Result<String, String> {
     );
     let mut recs: Vec<Rec> = vec![];
     for name in &names {
-        let sc = golden::scene::by_name(name, a.seed, None).map_err(|e| e.to_string())?;
+        let sc = golden::scene::tri_scene::by_name(name, a.seed, None).map_err(|e| e.to_string())?;
         let bvh = Bvh::build(&sc.tris, 4).map_err(|e| e.to_string())?;
-        let prim = golden::scene::primary_rays(&sc, a.width, a.height);
+        let prim = golden::scene::tri_scene::primary_rays(&sc, a.width, a.height);
         let (hits, _) = trace(&bvh, &sc.tris, &prim, &mut AabbOnly::new(&bvh));
-        let sec = golden::scene::secondary_rays(&sc, &prim, &hits, a.seed + 1);
+        let sec = golden::scene::tri_scene::secondary_rays(&sc, &prim, &hits, a.seed + 1);
         let b = sc.bounds();
         let diag = (b.max - b.min).length();
         let (lo, hi) = sc.grid_bounds();
@@ -281,7 +281,7 @@ pub fn scenes(a: &Args, out: &Path) -> Result<String, String> {
 fn path_name(p: &PathSpec) -> String {
     match p {
         PathSpec::Exact => BundlePath::Exact.name(),
-        PathSpec::Fix(bf) => golden::bundle_trav::short_name(&bf.base),
+        PathSpec::Fix(bf) => golden::bundle::traverse::short_name(&bf.base),
         PathSpec::Float(f) => f.name(),
     }
 }
@@ -405,16 +405,16 @@ pub struct CampaignArgs {
 
 /// Per datapath: its tally, and for fixed presets the one-ray checks (count, exact answers).
 struct Share {
-    tallies: Vec<golden::bundle_check::Tally>,
+    tallies: Vec<golden::bundle::check::Tally>,
     one_ray: Vec<(u64, u64, Vec<String>)>,
 }
 
-/// The conservativeness campaign of the bundle pair: `bundles` cases from `golden::bundle_gen`, each
+/// The conservativeness campaign of the bundle pair: `bundles` cases from `golden::bundle::gen`, each
 /// judged on every datapath against the exact per-ray results and the exact oracle
-/// (`golden::bundle_check`). Returns the report; errors if any promise is broken.
+/// (`golden::bundle::check`). Returns the report; errors if any promise is broken.
 pub fn campaign(a: &CampaignArgs, out: &Path) -> Result<String, String> {
-    use golden::bundle_check::{oracle, truth, Tally};
-    use golden::bundle_gen::BundleGen;
+    use golden::bundle::check::{oracle, truth, Tally};
+    use golden::bundle::gen::BundleGen;
     if !(0.0..=1.0).contains(&a.adversarial) {
         return Err(format!(
             "--adversarial {}: a fraction in 0..=1 is expected",
@@ -439,7 +439,7 @@ pub fn campaign(a: &CampaignArgs, out: &Path) -> Result<String, String> {
         .collect::<Result<Vec<_>, _>>()?;
     let names: Vec<String> = fixed
         .iter()
-        .map(|bf| format!("fixed {}", golden::bundle_trav::short_name(&bf.base)))
+        .map(|bf| format!("fixed {}", golden::bundle::traverse::short_name(&bf.base)))
         .chain(floats.iter().map(|f| format!("float {}", f.name())))
         .collect();
     let pb = ProgressBar::new(a.bundles);
@@ -466,12 +466,12 @@ pub fn campaign(a: &CampaignArgs, out: &Path) -> Result<String, String> {
                         let tr = truth(&c);
                         let or = (i % a.oracle_every == 0).then(|| oracle(&c));
                         for (k, (bf, map)) in fixed.iter().zip(maps).enumerate() {
-                            let got = golden::bundle_fix::decide_fix(bf, map, &c.bundle, &c.bounds)
+                            let got = golden::bundle::fix::decide_fix(bf, map, &c.bundle, &c.bounds)
                                 .map_err(|e| format!("fixed {}: {e}", bf.name()))?;
                             sh.tallies[k].add(&c, &tr, or, got);
                         }
                         for (k, f) in floats.iter().enumerate() {
-                            let got = golden::bundle_float::decide_float(f, &c.bundle, &c.bounds)
+                            let got = golden::bundle::float::decide_float(f, &c.bundle, &c.bounds)
                                 .map_err(|e| format!("float {}: {e}", f.name()))?;
                             sh.tallies[fixed.len() + k].add(&c, &tr, or, got);
                         }
@@ -480,7 +480,7 @@ pub fn campaign(a: &CampaignArgs, out: &Path) -> Result<String, String> {
                                 let c = one.grid_one_ray(map);
                                 let hit = truth(&c)[0];
                                 let got =
-                                    golden::bundle_fix::decide_fix(bf, map, &c.bundle, &c.bounds)
+                                    golden::bundle::fix::decide_fix(bf, map, &c.bundle, &c.bounds)
                                         .map_err(|e| format!("fixed {}: {e}", bf.name()))?;
                                 let o = &mut sh.one_ray[k];
                                 o.0 += 1;

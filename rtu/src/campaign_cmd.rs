@@ -3,15 +3,15 @@
 //! both datapaths. Vectors are streamed (memory stays flat); progress is shown; results go to
 //! `<out>/campaign.csv`.
 
-use golden::fixed::FixFormat;
-use golden::float::FloatFormat;
-use golden::gen::GenKind;
+use golden::format::fixed::FixFormat;
+use golden::format::float::FloatFormat;
+use golden::slab::gen::GenKind;
 use indicatif::{ProgressBar, ProgressStyle};
 use std::fmt::Write as _;
 use std::path::Path;
 use std::time::Instant;
 use tb::campaign::{conservative_campaign, float_campaign, slab_vectors, ConservativeStats};
-use tb::slab_tb::{xsim, XsimStats};
+use tb::slab::ports::{xsim, XsimStats};
 
 #[derive(clap::Args)]
 pub struct Args {

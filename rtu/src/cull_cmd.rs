@@ -1,17 +1,17 @@
 //! `rtu cull-campaign` and `rtu cull-scenes`: the cull-plane tester's conservativeness campaign against
 //! the exact clip and the exact triangle test, and the triangle tests it saves on scenes.
 
-use golden::bvh::Bvh;
-use golden::fixed::{FixFormat, GridMap};
+use golden::scene::bvh::Bvh;
+use golden::format::fixed::{FixFormat, GridMap};
 use golden::geom::Ray;
-use golden::plane_fix::CullFixFormat;
-use golden::plane_float::CullFloatFormat;
-use golden::scene_trav::{FixTester, FloatTester};
-use golden::traverse::{trace, AabbOnly, NodeTester};
+use golden::plane::fix::CullFixFormat;
+use golden::plane::float::CullFloatFormat;
+use golden::scene::sweep::{FixTester, FloatTester};
+use golden::scene::traverse::{trace, AabbOnly, NodeTester};
 use indicatif::{ProgressBar, ProgressStyle};
 use std::fmt::Write as _;
 use std::path::Path;
-use tb::plane_tb::{cull_fix_campaign, cull_float_campaign, CullFixCtx, CullStats};
+use tb::plane::fix::{cull_fix_campaign, cull_float_campaign, CullFixCtx, CullStats};
 
 fn bar(n: u64, msg: String) -> ProgressBar {
     let pb = ProgressBar::new(n);
@@ -29,7 +29,7 @@ pub fn campaign(
     n: u64,
     ks: &[usize],
     fixed: &[FixFormat],
-    floats: &[golden::float::FloatFormat],
+    floats: &[golden::format::float::FloatFormat],
     seed: u64,
 ) -> Result<String, String> {
     let mut table = String::from("| datapath | format | K | vectors | exact culls | culled | culled by exact fractions | triangle hits | violations |\n|---|---|---|---|---|---|---|---|---|\n");
@@ -94,11 +94,11 @@ fn row(t: &mut String, dp: &str, name: &str, k: usize, st: &CullStats) {
 
 /// A node tester with a conservativeness check on scenes: every node that `inner` culls although the
 /// exact slab test keeps it (a cull by the planes) is checked exactly — no triangle of its subtree is hit
-/// by the ray within its current `[t_min, t_max]` ([`golden::tri::tri_hit`]).
+/// by the ray within its current `[t_min, t_max]` ([`golden::scene::tri::tri_hit`]).
 struct Checked<'a, T> {
     inner: T,
     bvh: &'a Bvh,
-    tris: &'a [golden::tri::Triangle],
+    tris: &'a [golden::scene::tri::Triangle],
     /// Plane culls checked.
     checked: u64,
     /// Plane culls of a node whose triangle the ray hits: correctness bugs.
@@ -106,7 +106,7 @@ struct Checked<'a, T> {
 }
 
 impl<'a, T> Checked<'a, T> {
-    fn new(inner: T, bvh: &'a Bvh, tris: &'a [golden::tri::Triangle]) -> Self {
+    fn new(inner: T, bvh: &'a Bvh, tris: &'a [golden::scene::tri::Triangle]) -> Self {
         Checked {
             inner,
             bvh,
@@ -126,7 +126,7 @@ impl<T: NodeTester> NodeTester for Checked<'_, T> {
                 .bvh
                 .subtree_tris(node)
                 .iter()
-                .any(|&t| golden::tri::tri_hit(ray, &self.tris[t]).is_some());
+                .any(|&t| golden::scene::tri::tri_hit(ray, &self.tris[t]).is_some());
             self.violations += u64::from(hit);
         }
         r
@@ -157,14 +157,14 @@ impl Normals {
 /// baselines: AABB-only traversal in exact arithmetic, and the same format's tester with no planes
 /// (`K = 0`), which isolates what the planes save from what quantising the boxes costs. Every closest hit
 /// is compared with the exact AABB-only traversal's. Also the bytes per node of each layout
-/// ([`golden::plane::NodeLayout`]; shared: binary tree, two siblings). Every cull by the planes is checked
+/// ([`golden::plane::clip::NodeLayout`]; shared: binary tree, two siblings). Every cull by the planes is checked
 /// against the exact ray-triangle test of the node's triangles ([`Checked`]); one that hides a hit is an
 /// error. Writes `<out>/cull_scenes.csv` and returns a markdown table.
 pub fn scenes(
     names: &[String],
     ks: &[usize],
     fixed: &[FixFormat],
-    floats: &[golden::float::FloatFormat],
+    floats: &[golden::format::float::FloatFormat],
     w: usize,
     h: usize,
     out: &Path,
@@ -174,24 +174,24 @@ pub fn scenes(
     let mut check: Vec<(u64, u64, String)> = vec![];
     let mut table = String::from("| scene | rays | datapath | format | K | normals | bytes/node | triangle tests | saved vs same format K=0 | saved vs exact AABB | closest hits differing |\n|---|---|---|---|---|---|---|---|---|---|---|\n");
     for name in names {
-        let sc = golden::scene::by_name(name, 1, None).map_err(|e| e.to_string())?;
+        let sc = golden::scene::tri_scene::by_name(name, 1, None).map_err(|e| e.to_string())?;
         let bvh = Bvh::build(&sc.tris, 4).map_err(|e| e.to_string())?;
-        let prim = golden::scene::primary_rays(&sc, w, h);
+        let prim = golden::scene::tri_scene::primary_rays(&sc, w, h);
         let (hits0, _) = trace(&bvh, &sc.tris, &prim, &mut AabbOnly::new(&bvh));
-        let sec = golden::scene::secondary_rays(&sc, &prim, &hits0, 2);
+        let sec = golden::scene::tri_scene::secondary_rays(&sc, &prim, &hits0, 2);
         let (lo, hi) = sc.grid_bounds();
         // Per K: (normals, planes of every node).
         let mut plane_sets = vec![];
         for &k in ks {
             for (nm, gen) in [
-                (Normals::Own, golden::planegen::generate as fn(_, _, _) -> _),
-                (Normals::Shared, golden::planegen::generate_shared),
+                (Normals::Own, golden::plane::generate::generate as fn(_, _, _) -> _),
+                (Normals::Shared, golden::plane::generate::generate_shared),
             ] {
                 plane_sets.push((k, nm, gen(&bvh, &sc.tris, k).map_err(|e| e.to_string())?));
             }
         }
-        let none: Vec<Vec<golden::plane::Plane>> = vec![vec![]; bvh.nodes.len()];
-        let configs: Vec<(usize, Normals, &Vec<Vec<golden::plane::Plane>>)> =
+        let none: Vec<Vec<golden::plane::clip::Plane>> = vec![vec![]; bvh.nodes.len()];
+        let configs: Vec<(usize, Normals, &Vec<Vec<golden::plane::clip::Plane>>)> =
             std::iter::once((0, Normals::None, &none))
                 .chain(plane_sets.iter().map(|(k, nm, p)| (*k, *nm, p)))
                 .collect();
@@ -204,8 +204,8 @@ pub fn scenes(
                             bytes: f64,
                             k0: u64,
                             (hits, st): (
-                Vec<Option<golden::traverse::Hit>>,
-                golden::traverse::TraversalStats,
+                Vec<Option<golden::scene::traverse::Hit>>,
+                golden::scene::traverse::TraversalStats,
             )| {
                 let diff = hits.iter().zip(&base_hits).filter(|(a, b)| a != b).count();
                 let saved = |b: u64| 1.0 - st.tri_tests as f64 / b.max(1) as f64;
@@ -228,7 +228,7 @@ pub fn scenes(
                     100.0 * saved(base.tri_tests)
                 );
             };
-            let bytes = |l: golden::plane::NodeLayout, k: usize, nm: Normals| match nm {
+            let bytes = |l: golden::plane::clip::NodeLayout, k: usize, nm: Normals| match nm {
                 Normals::Shared => l.shared_bytes(k as u32, 2),
                 _ => f64::from(l.own_bytes(k as u32)),
             };

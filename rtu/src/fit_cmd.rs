@@ -1,9 +1,9 @@
 //! `rtu fit`: for each scene and a budget of extra tester cycles, the smallest fixed-point grid width and
 //! the smallest float format whose slab tester meets it, per ray set (primary, bounce, shadow, and all
-//! three), with their area and latency against binary32's as ratios and their Verilog exported (issue 6).
+//! three), with their area and latency against binary32's as ratios and their Verilog exported.
 //!
-//! The search walks the format ladders (`golden::fixed::FixFormat::grid`, 6..=20 grid bits;
-//! `golden::float::FloatFormat::LADDER`, narrowest first) through the same traversal model as `rtu sweep`
+//! The search walks the format ladders (`golden::format::fixed::FixFormat::grid`, 6..=20 grid bits;
+//! `golden::format::float::FloatFormat::LADDER`, narrowest first) through the same traversal model as `rtu sweep`
 //! (single rays, no planes), against the exact machine; the first format within the budget is the fit.
 //! "all" is the first format within the budget on every ray set at once. A format a ray does not fit
 //! (an origin beyond its range) is skipped, with a line on stderr. Area comes from the synthesis table, or
@@ -13,9 +13,9 @@
 use crate::sweep_cmd::{
     load_area, load_scene, read_area, run_set, tester, Area, Format, Prepared, RunCfg,
 };
-use golden::fixed::FixFormat;
-use golden::float::FloatFormat;
-use golden::scene_trav::{ExactTester, RaySet, SceneStats};
+use golden::format::fixed::FixFormat;
+use golden::format::float::FloatFormat;
+use golden::scene::sweep::{ExactTester, RaySet, SceneStats};
 use std::collections::HashMap;
 use std::fmt::Write as _;
 use std::path::{Path, PathBuf};

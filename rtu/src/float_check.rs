@@ -2,8 +2,8 @@
 //! bfloat16) and native `f32` (binary32) on every special pair plus `--pairs` random pairs per format and
 //! operation; the directed modes against the exact characterisation of correct rounding on a tenth as many.
 
-use golden::float::{FloatFormat, Rounding};
-use golden::floatcheck::{check_op, Op};
+use golden::format::float::{FloatFormat, Rounding};
+use golden::format::float_check::{check_op, Op};
 use half::{bf16, f16};
 use indicatif::{ProgressBar, ProgressStyle};
 use rand::{Rng, SeedableRng};

@@ -82,7 +82,7 @@ enum Cmd {
     /// Write generated vectors (uniform, adversarial or mixed) to a file, for `run` or other tools.
     Gen {
         #[arg(long, default_value = "mixed")]
-        kind: golden::gen::GenKind,
+        kind: golden::slab::gen::GenKind,
         #[arg(long, short, default_value_t = 1000)]
         n: u64,
         #[arg(long, default_value_t = 1)]
@@ -166,7 +166,7 @@ pub(crate) fn list<T>(
 
 fn parse_k(s: &str) -> Result<usize, String> {
     match s.parse::<usize>() {
-        Ok(k) if (1..=golden::plane_fix::MAX_PLANES).contains(&k) => Ok(k),
+        Ok(k) if (1..=golden::plane::fix::MAX_PLANES).contains(&k) => Ok(k),
         _ => Err(format!(
             "K = `{s}`: planes per node must be a number in 1..=8"
         )),
@@ -286,10 +286,10 @@ fn main() -> ExitCode {
         } => (|| {
             let ks = list(&k, parse_k)?;
             let fx = list(&fixed, |s| {
-                golden::fixed::FixFormat::parse(s).map_err(|e| e.to_string())
+                golden::format::fixed::FixFormat::parse(s).map_err(|e| e.to_string())
             })?;
             let fl = list(&float, |s| {
-                golden::float::FloatFormat::parse(s).map_err(|e| e.to_string())
+                golden::format::float::FloatFormat::parse(s).map_err(|e| e.to_string())
             })?;
             let t = cull_cmd::campaign(vectors, &ks, &fx, &fl, seed)?;
             print!("{t}");
@@ -314,10 +314,10 @@ fn main() -> ExitCode {
         } => (|| {
             let ks = list(&k, parse_k)?;
             let fx = list(&fixed, |s| {
-                golden::fixed::FixFormat::parse(s).map_err(|e| e.to_string())
+                golden::format::fixed::FixFormat::parse(s).map_err(|e| e.to_string())
             })?;
             let fl = list(&float, |s| {
-                golden::float::FloatFormat::parse(s).map_err(|e| e.to_string())
+                golden::format::float::FloatFormat::parse(s).map_err(|e| e.to_string())
             })?;
             let names = list(&scenes, |s| Ok(s.to_string()))?;
             let t = cull_cmd::scenes(&names, &ks, &fx, &fl, width, height, &cli.out)?;

@@ -2,16 +2,16 @@
 //! preset width, judged against the exact oracle; a summary table, Verilog, a VCD and a report.
 
 use crate::scene::Scene;
-use golden::check::Verdict;
+use golden::slab::check::Verdict;
 use golden::exact::{slab_exact, ExactHit, Ext};
-use golden::fixed::{FixFormat, GridMap};
-use golden::slab_float::{quantize_box, quantize_ray};
-use golden::slab_ref::slab_ref;
+use golden::format::fixed::{FixFormat, GridMap};
+use golden::slab::float::{quantize_box, quantize_ray};
+use golden::slab::reference::slab_ref;
 use std::fmt::Write as _;
 use std::path::Path;
 use std::time::Instant;
 use tb::engine::{run_fix, run_float, Engine};
-use tb::slab_tb::SlabCtx;
+use tb::slab::ports::SlabCtx;
 
 /// One row of the summary.
 pub struct Row {
@@ -193,7 +193,7 @@ pub fn run(scene: &Scene, out: &Path) -> Result<(Vec<Row>, String), String> {
             .map(|b| map.quantize_box(b))
             .collect::<Result<_, _>>()
             .map_err(|e| e.to_string())?;
-        let cell = golden::fixed::ldexp(1.0, map.k).to_string();
+        let cell = golden::format::fixed::ldexp(1.0, map.k).to_string();
         rows.push(measure(
             fmt.name(),
             cell,
@@ -258,7 +258,7 @@ pub fn run(scene: &Scene, out: &Path) -> Result<(Vec<Row>, String), String> {
             })
             .collect();
         tb::dut::run_checked(&mut dut, first, |v| {
-            golden::slab_fix::slab_fix(&fmt, &v.0, &v.1)
+            golden::slab::fix::slab_fix(&fmt, &v.0, &v.1)
         })
         .map_err(|e| e.to_string())?;
     }

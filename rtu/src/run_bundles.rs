@@ -1,18 +1,18 @@
-//! `rtu run --bundles`: users' bundle vectors (`golden::bundle_vectors`) through the AllHit / AnyHit pair
+//! `rtu run --bundles`: users' bundle vectors (`golden::bundle::vectors`) through the AllHit / AnyHit pair
 //! and the results processor, on the fixed or float datapath.
 
 use glam::DVec3;
-use golden::bundle::Bundle;
-use golden::bundle_fix::{self, BundleFixFormat};
-use golden::bundle_float;
-use golden::bundle_split::{split_fix, split_with, SplitResult};
-use golden::bundle_vectors::{read_bundles, write_bundle_result, BundleResult, BundleVector};
-use golden::fixed::{FixFormat, GridMap};
-use golden::float::FloatFormat;
-use rtl::bundle_split::{BundleSplitIo, SplitIn, SplitJob, SPLIT_RAYS};
+use golden::bundle::edge::Bundle;
+use golden::bundle::fix::{self as bundle_fix, BundleFixFormat};
+use golden::bundle::float as bundle_float;
+use golden::bundle::split::{split_fix, split_with, SplitResult};
+use golden::bundle::vectors::{read_bundles, write_bundle_result, BundleResult, BundleVector};
+use golden::format::fixed::{FixFormat, GridMap};
+use golden::format::float::FloatFormat;
+use rtl::bundle::split::{BundleSplitIo, SplitIn, SplitJob, SPLIT_RAYS};
 use std::io::{BufReader, BufWriter, Write};
 use std::path::Path;
-use tb::bundle_split_tb::SplitRtl;
+use tb::bundle::split::SplitRtl;
 use tb::engine::Engine;
 
 /// A datapath ready to judge world bundles.
@@ -65,7 +65,7 @@ fn fix_job(
     bf: &BundleFixFormat,
     map: &GridMap,
     v: &BundleVector,
-) -> Result<(SplitJob, Vec<golden::bundle_fix::FixBundle>), golden::Error> {
+) -> Result<(SplitJob, Vec<golden::bundle::fix::FixBundle>), golden::Error> {
     let rays = v
         .rays
         .iter()
@@ -81,7 +81,7 @@ fn fix_job(
 
 /// Runs the vectors on the rust-hdl results processor `S`: per vector, its rays written into the ray store
 /// one a clock, then the job, then clocks until `done`. Each result is compared with the model's
-/// (`golden::bundle_split::split_fix`); a difference stops the run.
+/// (`golden::bundle::split::split_fix`); a difference stops the run.
 fn run_rtl<S: BundleSplitIo>(
     bf: &BundleFixFormat,
     map: &GridMap,

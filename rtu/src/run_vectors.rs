@@ -1,13 +1,13 @@
 //! `rtu run` and `rtu gen`: users' vector files through any engine, and generated vectors out to a file.
 
 use glam::DVec3;
-use golden::fixed::{FixFormat, GridMap};
-use golden::float::FloatFormat;
-use golden::gen::{GenKind, SlabGen};
-use golden::plane_fix::CullFixFormat;
-use golden::plane_float::CullFloatFormat;
-use golden::slab_float::{quantize_box, quantize_ray};
-use golden::vectors::{
+use golden::format::fixed::{FixFormat, GridMap};
+use golden::format::float::FloatFormat;
+use golden::slab::gen::{GenKind, SlabGen};
+use golden::plane::fix::CullFixFormat;
+use golden::plane::float::CullFloatFormat;
+use golden::slab::float::{quantize_box, quantize_ray};
+use golden::slab::vectors::{
     csv_vector_header, read_vectors, write_header, write_result, write_vector, VecFormat, Vector,
     MAX_VECTOR_PLANES,
 };
@@ -15,9 +15,9 @@ use std::io::{BufRead, BufReader, BufWriter, Read, Write};
 use std::path::Path;
 use std::sync::{Arc, Mutex};
 use tb::engine::{run_cull_fix, run_cull_float, run_fix, run_float, Engine};
-use tb::plane_float_tb::{float_vector, CullFloatCtx};
-use tb::plane_tb::{fix_vector, CullFixCtx};
-use tb::slab_tb::SlabCtx;
+use tb::plane::float::{float_vector, CullFloatCtx};
+use tb::plane::fix::{fix_vector, CullFixCtx};
+use tb::slab::ports::SlabCtx;
 
 pub(crate) fn parse_bounds(s: &str) -> Result<(DVec3, DVec3), String> {
     let v: Vec<f64> = s
@@ -169,7 +169,7 @@ pub fn run(
             format!(
                 "format {}, grid cell {}, {k} planes",
                 fmt.name(),
-                golden::fixed::ldexp(1.0, map.k)
+                golden::format::fixed::ldexp(1.0, map.k)
             ),
         )
     };

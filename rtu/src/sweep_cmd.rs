@@ -1,5 +1,5 @@
-//! `rtu sweep`: speed against accuracy on scenes (issue 6). Every configuration — datapath and format,
-//! planes per node `K`, bundle size `B` — runs the same traversal model ([`golden::scene_trav`]) over the
+//! `rtu sweep`: speed against accuracy on scenes. Every configuration — datapath and format,
+//! planes per node `K`, bundle size `B` — runs the same traversal model ([`golden::scene::sweep`]) over the
 //! scene's primary, bounce and shadow rays; accuracy is measured against the exact machine of the same
 //! `K` and `B`, cost is joined from the synthesis table (area and logic depth from Yosys, latency) and the
 //! traversal's tester cycles per ray. Writes `sweep.csv`, `sweep.md` and per scene two SVG charts (extra
@@ -7,21 +7,21 @@
 
 use crate::chart::{scatter_chart, Point};
 use crate::list;
-use golden::bundle_build::{build, tiles, BuildParams, Built};
-use golden::bundle_fix::BundleFixFormat;
-use golden::bundle_trav::BundlePath;
-use golden::bvh::Bvh;
-use golden::fixed::{FixFormat, GridMap};
-use golden::float::FloatFormat;
+use golden::bundle::build::{build, tiles, BuildParams, Built};
+use golden::bundle::fix::BundleFixFormat;
+use golden::bundle::traverse::BundlePath;
+use golden::scene::bvh::Bvh;
+use golden::format::fixed::{FixFormat, GridMap};
+use golden::format::float::FloatFormat;
 use golden::geom::Ray;
-use golden::plane::Plane;
-use golden::plane_fix::CullFixFormat;
-use golden::plane_float::CullFloatFormat;
-use golden::scene::TriScene;
-use golden::scene_trav::{
+use golden::plane::clip::Plane;
+use golden::plane::fix::CullFixFormat;
+use golden::plane::float::CullFloatFormat;
+use golden::scene::tri_scene::TriScene;
+use golden::scene::sweep::{
     traverse, ExactTester, FixTester, FloatTester, Machine, RaySet, SceneStats,
 };
-use golden::traverse::{trace, AabbOnly, NodeTester};
+use golden::scene::traverse::{trace, AabbOnly, NodeTester};
 use std::collections::HashMap;
 use std::fmt::Write as _;
 use std::path::{Path, PathBuf};
@@ -41,7 +41,7 @@ pub struct Args {
     pub float: String,
     /// Planes per node, comma-separated (0 = the slab tester alone). Each node's planes are generated
     /// once, for the largest K listed, and a K-plane tester takes the first K of them, so the figures
-    /// of a smaller K depend on the largest K in the list (`golden::planegen` re-fits parents to the
+    /// of a smaller K depend on the largest K in the list (`golden::plane::generate` re-fits parents to the
     /// children's normals, which depend on how many planes are made).
     #[arg(long, default_value = "0,1,4")]
     pub k: String,
@@ -57,7 +57,7 @@ pub struct Args {
     #[arg(long, default_value = "primary,bounce,shadow")]
     pub sets: String,
     /// Secondary-ray origins are moved off the surface by this fraction of the scene's diagonal (see
-    /// `golden::scene::secondary_rays_offset`: a unit cannot tell an origin nearer than its resolution
+    /// `golden::scene::tri_scene::secondary_rays_offset`: a unit cannot tell an origin nearer than its resolution
     /// from the surface). The default is of the order of Waechter and Binder's self-intersection offset
     /// (Ray Tracing Gems, ch. 6, 2019: 256 binary32 ulps of the hit point, about 3e-5 of its magnitude).
     #[arg(long, default_value_t = 1e-5)]
@@ -109,7 +109,7 @@ pub enum Format {
 impl Format {
     pub fn name(&self) -> String {
         match self {
-            Format::Fix(f) => golden::bundle_trav::short_name(f),
+            Format::Fix(f) => golden::bundle::traverse::short_name(f),
             Format::Float(f) => float_short(f),
         }
     }
@@ -221,15 +221,15 @@ pub fn modules(f: &Format, k: usize, b: usize) -> Result<Vec<String>, String> {
         ),
         Format::Float(x) if k == 0 => rtl::export::slab_float_module(x),
         Format::Float(x) => {
-            rtl::plane_float_export::plane_float_module(&CullFloatFormat::over(*x), k)
+            rtl::plane::float_export::plane_float_module(&CullFloatFormat::over(*x), k)
         }
     }];
     if b > 1 {
         m.push(match f {
-            Format::Fix(x) => rtl::bundle_fix::bundle_fix_module(
+            Format::Fix(x) => rtl::bundle::pair_fix::bundle_fix_module(
                 &BundleFixFormat::over(*x).map_err(|e| e.to_string())?,
             ),
-            Format::Float(x) => rtl::bundle_float::bundle_float_module(x),
+            Format::Float(x) => rtl::bundle::pair_float::bundle_float_module(x),
         });
     }
     Ok(m)
@@ -302,9 +302,9 @@ impl Rec {
 /// A scene by name or OBJ path.
 pub fn load_scene(name: &str, seed: u64) -> Result<TriScene, String> {
     if name.ends_with(".obj") {
-        golden::scene::load_obj(Path::new(name)).map_err(|e| e.to_string())
+        golden::scene::tri_scene::load_obj(Path::new(name)).map_err(|e| e.to_string())
     } else {
-        golden::scene::by_name(name, seed, None).map_err(|e| e.to_string())
+        golden::scene::tri_scene::by_name(name, seed, None).map_err(|e| e.to_string())
     }
 }
 
@@ -342,9 +342,9 @@ impl<'a> Prepared<'a> {
             ));
         }
         let bvh = Bvh::build(&sc.tris, 4).map_err(|e| e.to_string())?;
-        let prim = golden::scene::primary_rays(sc, w, h);
+        let prim = golden::scene::tri_scene::primary_rays(sc, w, h);
         let (hits, _) = trace(&bvh, &sc.tris, &prim, &mut AabbOnly::new(&bvh));
-        let sec = golden::scene::secondary_rays_offset(sc, &prim, &hits, seed + 1, offset);
+        let sec = golden::scene::tri_scene::secondary_rays_offset(sc, &prim, &hits, seed + 1, offset);
         let b = sc.bounds();
         Ok(Prepared {
             sc,
@@ -512,7 +512,7 @@ pub fn measure(a: &Args) -> Result<(Vec<Rec>, HashMap<String, f64>), String> {
             .collect();
         let kmax = ks.iter().copied().max().unwrap_or(0);
         let planes = if kmax > 0 {
-            golden::planegen::generate(&p.bvh, &sc.tris, kmax).map_err(|e| e.to_string())?
+            golden::plane::generate::generate(&p.bvh, &sc.tris, kmax).map_err(|e| e.to_string())?
         } else {
             vec![]
         };

@@ -4,9 +4,9 @@
 //! line is an error naming the line and the field.
 
 use glam::DVec3;
-use golden::bundle_check::slab_hit;
-use golden::bundle_gen::BundleGen;
-use golden::bundle_vectors::{write_bundle_vector, BundleVector};
+use golden::bundle::check::slab_hit;
+use golden::bundle::gen::BundleGen;
+use golden::bundle::vectors::{write_bundle_vector, BundleVector};
 use serde_json::Value;
 use std::process::Command;
 

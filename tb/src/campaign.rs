@@ -1,11 +1,11 @@
 //! Streamed vector sources and campaigns: conservativeness of the bit-accurate model against the exact
 //! oracle, and cross-simulation of the exported Verilog. Nothing is stored: memory stays flat.
 
-use crate::slab_tb::SlabVec;
+use crate::slab::ports::SlabVec;
 use glam::DVec3;
-use golden::check::{check_fix, Verdict};
-use golden::fixed::{FixBox, FixFormat, FixRay, GridMap};
-use golden::gen::{GenKind, SlabGen};
+use golden::slab::check::{check_fix, Verdict};
+use golden::format::fixed::{FixBox, FixFormat, FixRay, GridMap};
+use golden::slab::gen::{GenKind, SlabGen};
 use rand::{Rng, SeedableRng};
 use rand_pcg::Pcg64;
 
@@ -24,7 +24,7 @@ pub fn campaign_map(fmt: FixFormat) -> GridMap {
 /// A world-vector generator over the campaign bounds, snapping some values to the grid of `map`.
 pub fn world_gen(map: &GridMap, kind: GenKind, seed: u64) -> SlabGen {
     let (lo, hi) = campaign_bounds();
-    SlabGen::new(kind, lo, hi, golden::fixed::ldexp(1.0, map.k), seed)
+    SlabGen::new(kind, lo, hi, golden::format::fixed::ldexp(1.0, map.k), seed)
 }
 
 /// A quantised vector with every field uniform over its code range (including codes that quantisation
@@ -104,9 +104,9 @@ pub fn slab_vectors(
 
 /// A float vector with every field any pattern of the format (NaN included), specials weighted up.
 pub fn raw_float_vector(
-    f: &golden::float::FloatFormat,
+    f: &golden::format::float::FloatFormat,
     rng: &mut Pcg64,
-) -> (golden::slab_float::FloatRay, golden::slab_float::FloatBox) {
+) -> (golden::slab::float::FloatRay, golden::slab::float::FloatBox) {
     let specials = f.specials();
     let mut x = || {
         if rng.gen_ratio(1, 4) {
@@ -115,8 +115,8 @@ pub fn raw_float_vector(
             rng.gen::<u32>() & f.mask()
         }
     };
-    let mut r = golden::slab_float::FloatRay::default();
-    let mut b = golden::slab_float::FloatBox::default();
+    let mut r = golden::slab::float::FloatRay::default();
+    let mut b = golden::slab::float::FloatBox::default();
     for a in 0..3 {
         (r.o_lo[a], r.o_hi[a], r.m_lo[a], r.m_hi[a], b.lo[a], b.hi[a]) =
             (x(), x(), x(), x(), x(), x());
@@ -128,12 +128,12 @@ pub fn raw_float_vector(
 
 /// `n` float test vectors for format `f`, as [`slab_vectors`] does for the fixed datapath.
 pub fn float_vectors(
-    f: golden::float::FloatFormat,
+    f: golden::format::float::FloatFormat,
     kind: GenKind,
     seed: u64,
     n: u64,
     bubbles: bool,
-) -> impl Iterator<Item = Option<(golden::slab_float::FloatRay, golden::slab_float::FloatBox)>>
+) -> impl Iterator<Item = Option<(golden::slab::float::FloatRay, golden::slab::float::FloatBox)>>
        + Send
        + 'static {
     let (lo, hi) = campaign_bounds();
@@ -141,8 +141,8 @@ pub fn float_vectors(
     let world = move || {
         let (r, b) = gen.next().expect("endless");
         (
-            golden::slab_float::quantize_ray(&f, &r).expect("campaign vectors fit the format"),
-            golden::slab_float::quantize_box(&f, &b).expect("campaign vectors fit the format"),
+            golden::slab::float::quantize_ray(&f, &r).expect("campaign vectors fit the format"),
+            golden::slab::float::quantize_box(&f, &b).expect("campaign vectors fit the format"),
         )
     };
     test_stream(seed, n, bubbles, world, move |rng| {
@@ -249,7 +249,7 @@ pub fn conservative_campaign(
     };
     judge_campaign(
         kind,
-        golden::fixed::ldexp(1.0, map.k),
+        golden::format::fixed::ldexp(1.0, map.k),
         n,
         seed,
         threads,
@@ -260,14 +260,14 @@ pub fn conservative_campaign(
 
 /// The float datapath's conservativeness campaign in format `f`.
 pub fn float_campaign(
-    f: golden::float::FloatFormat,
+    f: golden::format::float::FloatFormat,
     kind: GenKind,
     n: u64,
     seed: u64,
     threads: usize,
     progress: &(dyn Fn(u64) + Sync),
 ) -> ConservativeStats {
-    use golden::slab_float::{judge_float, quantize_box, quantize_ray, slab_float};
+    use golden::slab::float::{judge_float, quantize_box, quantize_ray, slab_float};
     let judge = move |r: &golden::Ray, b: &golden::Aabb| {
         let (fr, fb) = (
             quantize_ray(&f, r).expect("fits"),

@@ -3,17 +3,17 @@
 //! Verilog in Verilator. Results come back in input order.
 
 use crate::dut::PipelinedDut;
-use crate::plane_float_tb::CullFloatCtx;
-use crate::plane_tb::CullFixCtx;
+use crate::plane::float::CullFloatCtx;
+use crate::plane::fix::CullFixCtx;
 use crate::rtl_sim::SlabRtl;
-use crate::slab_tb::{in_word, SlabCtx};
-use golden::fixed::FixFormat;
-use golden::float::FloatFormat;
-use golden::plane_fix::{CullFixFormat, NodeFixRay, PlaneFixOut};
-use golden::plane_float::{CullFloatFormat, NodeFloatRay};
-use golden::slab_float::SlabFloatOut;
-use rtl::plane_fix::PlaneFixIo;
-use rtl::plane_float::PlaneFloatIo;
+use crate::slab::ports::{in_word, SlabCtx};
+use golden::format::fixed::FixFormat;
+use golden::format::float::FloatFormat;
+use golden::plane::fix::{CullFixFormat, NodeFixRay, PlaneFixOut};
+use golden::plane::float::{CullFloatFormat, NodeFloatRay};
+use golden::slab::float::SlabFloatOut;
+use rtl::plane::fix::PlaneFixIo;
+use rtl::plane::float::PlaneFloatIo;
 use rtl::SlabIo;
 use std::collections::VecDeque;
 use std::path::Path;
@@ -57,7 +57,7 @@ pub fn run_fix<K, It, F>(
 where
     K: Send + 'static,
     It: Iterator<Item = Keyed<K, FixFormat>> + Send + 'static,
-    F: FnMut(K, &golden::fixed::FixRay, golden::slab_fix::SlabFixOut) -> Result<(), String>,
+    F: FnMut(K, &golden::format::fixed::FixRay, golden::slab::fix::SlabFixOut) -> Result<(), String>,
 {
     if engine == Engine::Model {
         return run_model(fmt, tests, vcd, sink);
@@ -93,8 +93,8 @@ where
     It: Iterator<Item = Keyed<K, FloatFormat>> + Send + 'static,
     F: FnMut(
         K,
-        &golden::slab_float::FloatRay,
-        golden::slab_float::SlabFloatOut,
+        &golden::slab::float::FloatRay,
+        golden::slab::float::SlabFloatOut,
     ) -> Result<(), String>,
 {
     if engine == Engine::Model {
@@ -232,7 +232,7 @@ where
             ctx.cf.name()
         ));
     }
-    let module = rtl::plane_float_export::plane_float_module(&ctx.cf, ctx.k);
+    let module = rtl::plane::float_export::plane_float_module(&ctx.cf, ctx.k);
     let f = ctx.cf.f;
     std::thread::scope(|s| {
         std::thread::Builder::new()
@@ -243,7 +243,7 @@ where
                         engine,
                         ctx,
                         P::make,
-                        || rtl::plane_float_export::plane_float_verilog(&f, ctx.k),
+                        || rtl::plane::float_export::plane_float_verilog(&f, ctx.k),
                         &module,
                         tests,
                         verilator_dir,

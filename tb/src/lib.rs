@@ -1,7 +1,16 @@
-//! Testbenches of the rtu blocks.
+//! Testbenches of the rtu blocks: per block family the glue between its rust-hdl block, its model and
+//! its exported Verilog (port encoding, vector streams, cross-simulation loops), and the machinery every
+//! family shares.
 //!
 //! | module | what it does |
 //! | --- | --- |
+//! | [`slab::ports`] | the slab testers' port encoding and the cross-simulation loop, both datapaths ([`slab::ports::SlabCtx`]) |
+//! | [`slab::strategies`] | proptest strategies over quantised slab vectors |
+//! | [`plane::fix`] | the fixed cull-plane tester's port encoding, vector streams and the cull-plane campaigns |
+//! | [`plane::float`] | the float cull-plane tester's port encoding and vector streams |
+//! | [`bundle::pair_fix`] | the fixed bundle pair's vector streams, port encoding and cross-simulation loop |
+//! | [`bundle::pair_float`] | the float bundle pair's vector streams, port encoding and cross-simulation loop |
+//! | [`bundle::split`] | the results processor's driver, clock-by-clock stimulus, checker and cross-simulation |
 //! | [`engine`] | one streaming call over the model, the rust-hdl simulation and Verilator |
 //! | [`dut`] | the [`dut::PipelinedDut`] trait and a stream runner that checks results, tag order and latency |
 //! | [`rtl_sim`] | drives a rust-hdl block cycle by cycle (the fast direct loop), with optional VCD |
@@ -9,20 +18,14 @@
 //! | [`verilog_tools`] | Verilator lint and Icarus on exported Verilog |
 //! | [`verilator`] | builds a C++ harness around exported Verilog and streams vectors through it |
 //! | [`campaign`] | large streamed conservativeness and cross-simulation campaigns with progress |
-//! | [`strategies`] | proptest strategies over quantised slab vectors |
-//! | [`plane_tb`] | the fixed cull-plane tester's port encoding, vector streams and the cull-plane campaigns |
-//! | [`plane_float_tb`] | the float cull-plane tester's port encoding and vector streams |
-//! | [`bundle_float_tb`] | the float bundle pair's vector streams, port encoding and cross-simulation loop |
-//! | [`slab_tb`] | port encoding and the cross-simulation loop, for both datapaths ([`slab_tb::SlabCtx`]) |
 
+pub mod bundle;
 pub mod campaign;
 pub mod dut;
 pub mod engine;
-pub mod plane_float_tb;
-pub mod plane_tb;
+pub mod plane;
 pub mod rtl_sim;
-pub mod slab_tb;
-pub mod strategies;
+pub mod slab;
 pub mod vcd_read;
 pub mod verilator;
 pub mod verilog_tools;
@@ -37,6 +40,3 @@ pub fn out_dir() -> std::path::PathBuf {
             .join("out"),
     }
 }
-pub mod bundle_float_tb;
-pub mod bundle_split_tb;
-pub mod bundle_tb;

@@ -2,9 +2,9 @@
 //! threaded `Simulation`, per RUST_HDL_NOTES.md), optionally writing a VCD.
 
 use crate::dut::PipelinedDut;
-use golden::fixed::FixFormat;
-use rtl::slab_fix::SlabFixIo;
-use rtl::slab_float::SlabFloatIo;
+use golden::format::fixed::FixFormat;
+use rtl::slab::fix::SlabFixIo;
+use rtl::slab::float::SlabFloatIo;
 use rtl::SlabIo;
 use rust_hdl::core::vcd_probe::{write_vcd_change, write_vcd_dump, write_vcd_header, VCDProbe};
 use rust_hdl::prelude::*;
@@ -116,7 +116,7 @@ macro_rules! fp_unit_driver {
         }
 
         impl<const E: usize, const M: usize, const N: usize> $name<E, M, N> {
-            pub fn new(mode: golden::float::Rounding) -> Self {
+            pub fn new(mode: golden::format::float::Rounding) -> Self {
                 let mut uut = rtl::$block::new(mode);
                 uut.connect_all();
                 $name { uut }
@@ -161,5 +161,5 @@ macro_rules! fp_unit_driver {
     };
 }
 
-fp_unit_driver!(FpAddRtl, FpAdd, rtl::fp_add::FP_ADD_LATENCY, "adder");
-fp_unit_driver!(FpMulRtl, FpMul, rtl::fp_mul::FP_MUL_LATENCY, "multiplier");
+fp_unit_driver!(FpAddRtl, FpAdd, rtl::fp::add::FP_ADD_LATENCY, "adder");
+fp_unit_driver!(FpMulRtl, FpMul, rtl::fp::mul::FP_MUL_LATENCY, "multiplier");

@@ -1,4 +1,4 @@
-//! The format ladder (`golden::fixed::FixFormat::grid`, `golden::float::FloatFormat::LADDER`) in RTL:
+//! The format ladder (`golden::format::fixed::FixFormat::grid`, `golden::format::float::FloatFormat::LADDER`) in RTL:
 //! every ladder format dispatches to an instantiated block; and for the smallest, a middle and the
 //! largest fixed format (g6, g13, g20) and the smallest and a middle new float format (e5m3, e6m8):
 //! - the rust-hdl simulation equals the bit-accurate model on a few thousand random vectors (quantised
@@ -8,24 +8,24 @@
 //!   Verilog at the new widths);
 //! - the model is conservative against the exact oracle (no false miss, enclosing intervals).
 
-use golden::fixed::{FixFormat, GRID_LADDER};
-use golden::float::FloatFormat;
-use golden::gen::GenKind;
-use golden::slab_fix::slab_fix;
-use golden::slab_float::slab_float;
+use golden::format::fixed::{FixFormat, GRID_LADDER};
+use golden::format::float::FloatFormat;
+use golden::slab::gen::GenKind;
+use golden::slab::fix::slab_fix;
+use golden::slab::float::slab_float;
 use proptest::test_runner::{Config, TestCaseError, TestRunner};
 use rtl::export::{
     slab_fix_module, slab_fix_verilog_ladder, slab_float_module, slab_float_verilog_ladder,
 };
-use rtl::slab_fix::SlabFixIo;
-use rtl::slab_float::SlabFloatIo;
+use rtl::slab::fix::SlabFixIo;
+use rtl::slab::float::SlabFloatIo;
 use rtl::SlabIo;
 use std::cell::RefCell;
 use tb::campaign::{conservative_campaign, float_campaign, float_vectors, slab_vectors};
 use tb::dut::run_checked;
 use tb::rtl_sim::SlabRtl;
-use tb::slab_tb::xsim;
-use tb::strategies::{float_burst, slab_burst};
+use tb::slab::ports::xsim;
+use tb::slab::strategies::{float_burst, slab_burst};
 
 /// Stream vectors per format (world, one in eight raw, bubbles) through the rust-hdl simulation.
 const SIM_VECTORS: u64 = 3_000;

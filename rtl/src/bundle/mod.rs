@@ -1,0 +1,22 @@
+//! The AllHit / AnyHit bundle blocks (models: `golden::bundle`).
+//!
+//! | block | file | model it matches |
+//! | --- | --- | --- |
+//! | [`edge_fix::BundleTest`] | `bundle/edge_fix.rs` | one fixed edge tester (AllHit or AnyHit), `golden::bundle::fix` |
+//! | [`pair_fix::BundleFix`] | `bundle/pair_fix.rs` | the fixed pair, `golden::bundle::fix::decide_fix` |
+//! | [`edge_le::EdgeLe`], [`dist_le::DistLe`], [`fold_diff::FoldDiff`] | `bundle/*.rs` | the fixed pair's comparisons |
+//! | [`edge_float::BundleFloatTest`] | `bundle/edge_float.rs` | one float edge tester, `golden::bundle::float` |
+//! | [`pair_float::BundleFloat`] | `bundle/pair_float.rs` | the float pair, `golden::bundle::float::decide_float` |
+//! | [`split::BundleSplit`] | `bundle/split.rs` | the results processor, `golden::bundle::split` |
+//!
+//! Which configurations exist: [`registry`].
+
+pub mod dist_le;
+pub mod edge_fix;
+pub mod edge_float;
+pub mod edge_le;
+pub mod fold_diff;
+pub mod pair_fix;
+pub mod pair_float;
+pub mod registry;
+pub mod split;

@@ -1,0 +1,343 @@
+//! `BundleFloat`: the pair of float bundle testers of format `E`/`M`, AllHit and AnyHit side by side
+//! ([`BundleFloatTest`] twice), fully pipelined (one test per clock), [`BUNDLE_FLOAT_LATENCY`] clocks of
+//! latency. Per clock the pair takes either one bundle, which both testers judge, or two single rays, one
+//! per tester (the pair of testing blocks of US 11,308,683 and the "one bundle or two rays" claims of
+//! US 11,682,160); the float counterpart of [`crate::bundle::pair_fix::BundleFix`].
+//!
+//! Bit for bit `golden::bundle::float::{all_hit_float, all_miss_float}` ([`FloatPairInput::model`] says
+//! which inputs; the conditions, their bounds and proofs are in `golden/src/bundle/edge.rs` and
+//! `golden/src/bundle/float.rs`). The ports mirror `golden::bundle::float::FloatBundle` and
+//! `golden::bundle::edge::BoxPair<FloatBox>`; for a node box stored in the format the two boxes are equal.
+//!
+//! # Two rays
+//! A ray quantised into a float format is not a point: its origin is `[RD(o), RU(o)]`, its direction
+//! `[RD, RU]` of the scaled direction, its `t_max` `[RD, RU]` (`golden::bundle::float::quantize_bundle` of
+//! `Bundle::of_ray`), a tiny bundle. AllHit's bounds on it answer "every ray of this tiny bundle hits",
+//! which may be false for a ray that hits (a grazing one); what a traversal needs of a single ray is the
+//! sound "may hit", which is AnyHit's pass. So in two-ray mode both testers run AnyHit's bounds on the
+//! outer box with their ray's `t_hi` (the AllHit tester through its `any_mode` input), and
+//! `all_hit` = "ray A may hit" (AnyHit passes for A), `all_miss` = "ray B misses" (AnyHit fails for B):
+//! both low means "descend for B but not A" and so on; neither answer is ever wrong for a ray that hits.
+//!
+//! # Parameters
+//! `E >= 4`, `M`, `N = 1 + E + M <= 32`; the presets are [`crate::BundleFloatFp32`],
+//! [`crate::BundleFloatBf16`], [`crate::BundleFloatFp16`].
+//!
+//! # Inputs
+//! - `clock`; `valid_in`, `tag_in` (16 bits, opaque, returned with the result);
+//! - `o_lo`, `o_hi`, `d_lo`, `d_hi` (arrays over x, y, z), `t_lo`, `t_hi`: the bundle (ray A in two-ray
+//!   mode, where `t_lo` is unused);
+//! - `two_rays`: two single rays instead of a bundle; ray B is `r_o_lo`, `r_o_hi`, `r_d_lo`, `r_d_hi`
+//!   (arrays) and `r_t` (its `t_hi`);
+//! - `in_lo`, `in_hi`: the inner box (AllHit in bundle mode; unused in two-ray mode); `out_lo`, `out_hi`:
+//!   the outer box (AnyHit, and both testers in two-ray mode).
+//!
+//! # Outputs (registered, [`BUNDLE_FLOAT_LATENCY`] clocks after the inputs)
+//! - `valid_out`, `tag_out`;
+//! - `all_hit`: every ray of the bundle hits (bundle mode); ray A may hit (two-ray mode);
+//! - `all_miss`: every ray of the bundle misses (bundle mode); ray B misses (two-ray mode).
+//!   For a bundle both low means "some may hit": descend.
+//!
+//! Both testers carry their own valid and tag; the outputs take the AND of the two sides' (they are
+//! equal), so that no child output is left unused.
+
+use crate::bundle::edge_float::{BundleFloatTest, BUNDLE_FLOAT_TEST_LATENCY};
+use crate::io::SlabIo;
+use crate::TAG_BITS;
+use golden::bundle::edge::BoxPair;
+use golden::bundle::float::{all_hit_float, all_miss_float, FloatBundle};
+use golden::format::float::FloatFormat;
+use golden::slab::float::FloatBox;
+use rust_hdl::prelude::*;
+
+/// Clocks from a test entering `BundleFloat` to its result leaving.
+pub const BUNDLE_FLOAT_LATENCY: usize = BUNDLE_FLOAT_TEST_LATENCY;
+
+/// The AllHit + AnyHit pair; see the module documentation.
+#[derive(LogicBlock)]
+pub struct BundleFloat<const E: usize, const M: usize, const N: usize> {
+    pub clock: Signal<In, Clock>,
+    pub valid_in: Signal<In, Bit>,
+    pub tag_in: Signal<In, Bits<TAG_BITS>>,
+    pub o_lo: [Signal<In, Bits<N>>; 3],
+    pub o_hi: [Signal<In, Bits<N>>; 3],
+    pub d_lo: [Signal<In, Bits<N>>; 3],
+    pub d_hi: [Signal<In, Bits<N>>; 3],
+    pub t_lo: Signal<In, Bits<N>>,
+    pub t_hi: Signal<In, Bits<N>>,
+    pub two_rays: Signal<In, Bit>,
+    pub r_o_lo: [Signal<In, Bits<N>>; 3],
+    pub r_o_hi: [Signal<In, Bits<N>>; 3],
+    pub r_d_lo: [Signal<In, Bits<N>>; 3],
+    pub r_d_hi: [Signal<In, Bits<N>>; 3],
+    pub r_t: Signal<In, Bits<N>>,
+    pub in_lo: [Signal<In, Bits<N>>; 3],
+    pub in_hi: [Signal<In, Bits<N>>; 3],
+    pub out_lo: [Signal<In, Bits<N>>; 3],
+    pub out_hi: [Signal<In, Bits<N>>; 3],
+    pub valid_out: Signal<Out, Bit>,
+    pub tag_out: Signal<Out, Bits<TAG_BITS>>,
+    pub all_hit: Signal<Out, Bit>,
+    pub all_miss: Signal<Out, Bit>,
+    all_hit_test: BundleFloatTest<E, M, N>,
+    any_hit_test: BundleFloatTest<E, M, N>,
+}
+
+impl<const E: usize, const M: usize, const N: usize> BundleFloat<E, M, N> {
+    /// The pair (the format is the parameters').
+    pub fn new() -> Self {
+        Self {
+            clock: Default::default(),
+            valid_in: Default::default(),
+            tag_in: Default::default(),
+            o_lo: Default::default(),
+            o_hi: Default::default(),
+            d_lo: Default::default(),
+            d_hi: Default::default(),
+            t_lo: Default::default(),
+            t_hi: Default::default(),
+            two_rays: Default::default(),
+            r_o_lo: Default::default(),
+            r_o_hi: Default::default(),
+            r_d_lo: Default::default(),
+            r_d_hi: Default::default(),
+            r_t: Default::default(),
+            in_lo: Default::default(),
+            in_hi: Default::default(),
+            out_lo: Default::default(),
+            out_hi: Default::default(),
+            valid_out: Default::default(),
+            tag_out: Default::default(),
+            all_hit: Default::default(),
+            all_miss: Default::default(),
+            all_hit_test: BundleFloatTest::all_hit(),
+            any_hit_test: BundleFloatTest::any_hit(),
+        }
+    }
+}
+
+impl<const E: usize, const M: usize, const N: usize> Default for BundleFloat<E, M, N> {
+    fn default() -> Self {
+        Self::new()
+    }
+}
+
+impl<const E: usize, const M: usize, const N: usize> Logic for BundleFloat<E, M, N> {
+    #[hdl_gen]
+    fn update(&mut self) {
+        self.all_hit_test.clock.next = self.clock.val();
+        self.any_hit_test.clock.next = self.clock.val();
+        self.all_hit_test.valid_in.next = self.valid_in.val();
+        self.any_hit_test.valid_in.next = self.valid_in.val();
+        self.all_hit_test.tag_in.next = self.tag_in.val();
+        self.any_hit_test.tag_in.next = self.tag_in.val();
+        // Two rays: both testers take AnyHit's bounds (the AnyHit tester always does).
+        self.all_hit_test.any_mode.next = self.two_rays.val();
+        self.any_hit_test.any_mode.next = self.two_rays.val();
+        for i in 0..3 {
+            self.all_hit_test.o_lo[i].next = self.o_lo[i].val();
+            self.all_hit_test.o_hi[i].next = self.o_hi[i].val();
+            self.all_hit_test.d_lo[i].next = self.d_lo[i].val();
+            self.all_hit_test.d_hi[i].next = self.d_hi[i].val();
+            if self.two_rays.val() {
+                self.all_hit_test.box_lo[i].next = self.out_lo[i].val();
+                self.all_hit_test.box_hi[i].next = self.out_hi[i].val();
+                self.any_hit_test.o_lo[i].next = self.r_o_lo[i].val();
+                self.any_hit_test.o_hi[i].next = self.r_o_hi[i].val();
+                self.any_hit_test.d_lo[i].next = self.r_d_lo[i].val();
+                self.any_hit_test.d_hi[i].next = self.r_d_hi[i].val();
+            } else {
+                self.all_hit_test.box_lo[i].next = self.in_lo[i].val();
+                self.all_hit_test.box_hi[i].next = self.in_hi[i].val();
+                self.any_hit_test.o_lo[i].next = self.o_lo[i].val();
+                self.any_hit_test.o_hi[i].next = self.o_hi[i].val();
+                self.any_hit_test.d_lo[i].next = self.d_lo[i].val();
+                self.any_hit_test.d_hi[i].next = self.d_hi[i].val();
+            }
+            self.any_hit_test.box_lo[i].next = self.out_lo[i].val();
+            self.any_hit_test.box_hi[i].next = self.out_hi[i].val();
+        }
+        if self.two_rays.val() {
+            self.all_hit_test.t_max.next = self.t_hi.val();
+            self.any_hit_test.t_max.next = self.r_t.val();
+        } else {
+            self.all_hit_test.t_max.next = self.t_lo.val();
+            self.any_hit_test.t_max.next = self.t_hi.val();
+        }
+        self.valid_out.next = self.all_hit_test.valid_out.val() & self.any_hit_test.valid_out.val();
+        self.tag_out.next = self.all_hit_test.tag_out.val() & self.any_hit_test.tag_out.val();
+        // all_hit is AllHit's pass in bundle mode and AnyHit's pass ("may hit") for ray A.
+        self.all_hit.next = self.all_hit_test.pass.val();
+        self.all_miss.next = !self.any_hit_test.pass.val();
+    }
+}
+
+/// What the pair takes in one clock.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum FloatPairInput {
+    /// One bundle, judged by both testers.
+    Bundle(FloatBundle),
+    /// Two single rays, each quantised as a tiny bundle: A to the AllHit tester, B to the AnyHit tester,
+    /// both judged with AnyHit's bounds on the outer box and `t_hi`.
+    TwoRays(FloatBundle, FloatBundle),
+}
+
+impl FloatPairInput {
+    /// The bundles the AllHit and the AnyHit tester judge.
+    pub fn sides(&self) -> (&FloatBundle, &FloatBundle) {
+        match self {
+            FloatPairInput::Bundle(b) => (b, b),
+            FloatPairInput::TwoRays(a, b) => (a, b),
+        }
+    }
+
+    /// True for two rays.
+    pub fn is_two_rays(&self) -> bool {
+        matches!(self, FloatPairInput::TwoRays(..))
+    }
+
+    /// The bit-accurate model, `(all_hit, all_miss)`: for a bundle `(all_hit_float` on the inner box,
+    /// `all_miss_float` on the outer box`)`; for two rays `(!all_miss_float(A)`, `all_miss_float(B))`, both
+    /// on the outer box.
+    pub fn model(&self, f: &FloatFormat, boxes: &BoxPair<FloatBox>) -> (bool, bool) {
+        match self {
+            FloatPairInput::Bundle(b) => (
+                all_hit_float(f, b, &boxes.inner),
+                all_miss_float(f, b, &boxes.outer),
+            ),
+            FloatPairInput::TwoRays(a, b) => (
+                !all_miss_float(f, a, &boxes.outer),
+                all_miss_float(f, b, &boxes.outer),
+            ),
+        }
+    }
+}
+
+/// A float bundle pair of any format, so drivers need not spell the widths.
+pub trait BundleFloatIo:
+    SlabIo<Ray = FloatPairInput, Box = BoxPair<FloatBox>, Out = (bool, bool)>
+{
+    /// The format of the block.
+    fn format() -> FloatFormat;
+    /// The pair for `f`, which must be the block's format.
+    fn for_format(f: &FloatFormat) -> Self;
+}
+
+impl<const E: usize, const M: usize, const N: usize> BundleFloatIo for BundleFloat<E, M, N> {
+    fn format() -> FloatFormat {
+        FloatFormat::new(E as u32, M as u32).expect("valid format")
+    }
+
+    fn for_format(f: &FloatFormat) -> Self {
+        assert_eq!(
+            *f,
+            <Self as BundleFloatIo>::format(),
+            "BundleFloat<{E},{M},{N}> is not for format {}",
+            f.name()
+        );
+        Self::new()
+    }
+}
+
+impl<const E: usize, const M: usize, const N: usize> SlabIo for BundleFloat<E, M, N> {
+    type Ray = FloatPairInput;
+    type Box = BoxPair<FloatBox>;
+    /// `(all_hit, all_miss)`, as [`FloatPairInput::model`].
+    type Out = (bool, bool);
+    const LATENCY: usize = BUNDLE_FLOAT_LATENCY;
+
+    fn set_clock(&mut self, high: bool) {
+        self.clock.next = Clock { clk: high };
+    }
+
+    fn drive(&mut self, test: Option<(u16, &FloatPairInput, &BoxPair<FloatBox>)>) {
+        match test {
+            Some((tag, input, p)) => {
+                let (a, r) = input.sides();
+                let w = |x: u32| bits::<N>(x as u64);
+                self.valid_in.next = true;
+                self.two_rays.next = input.is_two_rays();
+                self.tag_in.next = bits::<TAG_BITS>(tag as u64);
+                for i in 0..3 {
+                    self.o_lo[i].next = w(a.o_lo[i]);
+                    self.o_hi[i].next = w(a.o_hi[i]);
+                    self.d_lo[i].next = w(a.d_lo[i]);
+                    self.d_hi[i].next = w(a.d_hi[i]);
+                    self.r_o_lo[i].next = w(r.o_lo[i]);
+                    self.r_o_hi[i].next = w(r.o_hi[i]);
+                    self.r_d_lo[i].next = w(r.d_lo[i]);
+                    self.r_d_hi[i].next = w(r.d_hi[i]);
+                    self.in_lo[i].next = w(p.inner.lo[i]);
+                    self.in_hi[i].next = w(p.inner.hi[i]);
+                    self.out_lo[i].next = w(p.outer.lo[i]);
+                    self.out_hi[i].next = w(p.outer.hi[i]);
+                }
+                self.t_lo.next = w(a.t_lo);
+                self.t_hi.next = w(a.t_hi);
+                self.r_t.next = w(r.t_hi);
+            }
+            None => self.valid_in.next = false,
+        }
+    }
+
+    fn result(&self) -> Option<(u16, (bool, bool))> {
+        if !self.valid_out.val() {
+            return None;
+        }
+        Some((
+            self.tag_out.val().to_u64() as u16,
+            (self.all_hit.val(), self.all_miss.val()),
+        ))
+    }
+
+    fn output_word(&self, port: &str) -> Option<u64> {
+        Some(match port {
+            "valid_out" => self.valid_out.val() as u64,
+            "tag_out" => self.tag_out.val().to_u64(),
+            "all_hit" => self.all_hit.val() as u64,
+            "all_miss" => self.all_miss.val() as u64,
+            _ => return None,
+        })
+    }
+}
+
+/// Module name of the float bundle pair for a format, e.g. `bundle_float_e8m23`.
+pub fn bundle_float_module(f: &FloatFormat) -> String {
+    format!("bundle_float_{}", f.name())
+}
+
+/// Verilog of the float bundle pair for an instantiated format.
+pub fn bundle_float_verilog(f: &FloatFormat) -> Result<String, String> {
+    crate::with_bundle_float!(f, P, {
+        let mut uut = Box::new(P::new());
+        crate::export::verilog_named(uut.as_mut(), &bundle_float_module(f))
+    })
+}
+
+/// Runs `$body` with `$t` bound to the `BundleFloat` type of a float format, or returns an error for a
+/// format without an instantiated block.
+#[macro_export]
+macro_rules! with_bundle_float {
+    ($f:expr, $t:ident, $body:block) => {{
+        let f: &golden::format::float::FloatFormat = $f;
+        match (f.e, f.m) {
+            (8, 23) => {
+                type $t = $crate::BundleFloatFp32;
+                Ok($body)
+            }
+            (8, 7) => {
+                type $t = $crate::BundleFloatBf16;
+                Ok($body)
+            }
+            (5, 10) => {
+                type $t = $crate::BundleFloatFp16;
+                Ok($body)
+            }
+            _ => Err(format!(
+                "no BundleFloat instance for float format {}: instantiated are e8m23, e8m7, e5m10 \
+                 (add a type alias in rtl/src/lib.rs for another)",
+                f.name()
+            )),
+        }
+    }};
+}

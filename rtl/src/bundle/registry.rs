@@ -1,0 +1,34 @@
+//! The bundle blocks that exist: the fixed pair and the results processor over each preset grid, and the
+//! float pair in binary32, bfloat16 and binary16.
+
+use super::pair_fix::BundleFix;
+use super::pair_float::BundleFloat;
+use super::split::BundleSplit;
+
+/// The fixed-point AllHit + AnyHit bundle pair over b8 (`FD = 6`).
+pub type BundleFixB8 = BundleFix<8, 9, 9, 14>;
+/// The same over b12 (`FD = 10`).
+pub type BundleFixB12 = BundleFix<12, 13, 13, 20>;
+/// The same over b16 (`FD = 14`).
+pub type BundleFixB16 = BundleFix<16, 17, 17, 24>;
+
+/// The float AllHit + AnyHit bundle pair in binary32.
+pub type BundleFloatFp32 = BundleFloat<8, 23, 32>;
+/// The same in bfloat16.
+pub type BundleFloatBf16 = BundleFloat<8, 7, 16>;
+/// The same in binary16.
+pub type BundleFloatFp16 = BundleFloat<5, 10, 16>;
+
+/// The float formats with an instantiated float bundle pair (`with_bundle_float!`).
+pub const BUNDLE_FLOAT_FORMATS: [golden::format::float::FloatFormat; 3] = [
+    golden::format::float::FloatFormat::FP32,
+    golden::format::float::FloatFormat::BF16,
+    golden::format::float::FloatFormat::FP16,
+];
+
+/// The bundle results processor ([`BundleSplit`], 16 rays) over b8 (`FD = 6`).
+pub type BundleSplitB8 = BundleSplit<8, 9, 9, 14>;
+/// The same over b12 (`FD = 10`).
+pub type BundleSplitB12 = BundleSplit<12, 13, 13, 20>;
+/// The same over b16 (`FD = 14`).
+pub type BundleSplitB16 = BundleSplit<16, 17, 17, 24>;

@@ -1,0 +1,17 @@
+//! The float units of the float datapaths, each bit for bit a function of `golden::format::float`:
+//!
+//! | block | file | what it does |
+//! | --- | --- | --- |
+//! | [`add::FpAdd`] | `fp/add.rs` | add and subtract, 3 clocks, one rounding mode a unit |
+//! | [`mul::FpMul`] | `fp/mul.rs` | multiply, 3 clocks |
+//! | [`round::FpRound`] | `fp/round.rs` | the shared rounding of a normalised significand |
+//! | [`sig_mul::SigMul`] | `fp/sig_mul.rs` | significand product and its leading one (hand-written Verilog) |
+//! | [`cmp::FpCmp`] | `fp/cmp.rs` | compare |
+//! | [`min_max`] | `fp/min_max.rs` | minimum and maximum |
+
+pub mod add;
+pub mod cmp;
+pub mod min_max;
+pub mod mul;
+pub mod round;
+pub mod sig_mul;

@@ -1,0 +1,549 @@
+//! `PlaneFix`: the fixed-point slab tester chained with `K` cull planes (Arm US 2025/0259373), fully
+//! pipelined (one node test per clock), [`PLANE_FIX_LATENCY`] clocks. Bit for bit
+//! `golden::plane::fix::node_fix` (read `golden::plane::fix` for the arithmetic and the conservativeness
+//! argument); ports mirror `golden::plane::fix::{NodeFixRay, FixNode}` and `PlaneFixOut`.
+//!
+//! # Parameters
+//! `G, D, I, T`: the slab format ([`SlabFix`], `D = G + 1`); `N`: normal bits; `DB = FD + 3`: direction
+//! bits; `WB = G + N + 4`: offset bits; `SB = G + N + 5`: `S` bits; `EB = N + FD + 4`: `den` bits; `K`:
+//! planes per node, `1..=8`. Stable Rust cannot compute widths from widths, hence the list, checked
+//! against the format by [`PlaneFix::new`].
+//!
+//! # Ports
+//! The slab tester's (`ray_o_lo`, `ray_o_hi`, `ray_m_lo`, `ray_m_hi`, `ray_neg`, `ray_t_min`, `ray_t_max`,
+//! `box_lo`, `box_hi`), plus `ray_d_lo`, `ray_d_hi` (the direction interval) and per plane `plane_nx`,
+//! `plane_ny`, `plane_nz`, `plane_w`; outputs `valid_out`, `tag_out`, `hit` (not culled), `t_entry`,
+//! `t_exit`.
+//!
+//! # Stages
+//! The slab tester runs in parallel with the plane arithmetic and the two meet at clock 5.
+//! 1. `_q1`: per plane, [`PlaneSums`]: `S_lo`, `den_lo`, `den_hi`, the operands chosen by the sign of
+//!    each normal component.
+//! 2. `_q2`: per plane, [`PlaneBound`]: the entry bound (or `-inf`), the exit bound (or `+inf`), the
+//!    parallel-cull flag.
+//! 3. `_q3`, 4. `_q4`: two levels of the max (entries) and min (exits) trees over eight slots (slots from
+//!    `K` on hold `-inf`/`+inf`, which synthesis removes).
+//! 5. `_q5`: the last level merged with the slab tester's result (out at clock 4).
+//! 6. `_q6`: `hit = slab hit && no parallel cull && t_entry <= t_exit`; these registers drive the outputs.
+
+use crate::plane::bound::PlaneBound;
+use crate::plane::sums::PlaneSums;
+use crate::slab::fix::{code, sext, SlabFix, TAG_BITS};
+use crate::io::SlabIo;
+use golden::plane::fix::{CullFixFormat, FixNode, NodeFixRay, PlaneFixOut, MAX_PLANES};
+use rust_hdl::prelude::*;
+
+/// Clocks from a node test entering `PlaneFix` to its result leaving.
+pub const PLANE_FIX_LATENCY: usize = 6;
+
+/// The chained fixed-point slab + cull-plane tester; see the module documentation.
+#[derive(LogicBlock)]
+pub struct PlaneFix<
+    const G: usize,
+    const D: usize,
+    const I: usize,
+    const T: usize,
+    const N: usize,
+    const DB: usize,
+    const WB: usize,
+    const SB: usize,
+    const EB: usize,
+    const K: usize,
+> {
+    pub clock: Signal<In, Clock>,
+    pub valid_in: Signal<In, Bit>,
+    pub tag_in: Signal<In, Bits<TAG_BITS>>,
+    pub ray_o_lo: [Signal<In, Bits<G>>; 3],
+    pub ray_o_hi: [Signal<In, Bits<G>>; 3],
+    pub ray_m_lo: [Signal<In, Bits<I>>; 3],
+    pub ray_m_hi: [Signal<In, Bits<I>>; 3],
+    pub ray_neg: [Signal<In, Bit>; 3],
+    pub ray_t_min: Signal<In, Bits<T>>,
+    pub ray_t_max: Signal<In, Bits<T>>,
+    pub ray_d_lo: [Signal<In, Bits<DB>>; 3],
+    pub ray_d_hi: [Signal<In, Bits<DB>>; 3],
+    pub box_lo: [Signal<In, Bits<G>>; 3],
+    pub box_hi: [Signal<In, Bits<G>>; 3],
+    pub plane_nx: [Signal<In, Bits<N>>; K],
+    pub plane_ny: [Signal<In, Bits<N>>; K],
+    pub plane_nz: [Signal<In, Bits<N>>; K],
+    pub plane_w: [Signal<In, Bits<WB>>; K],
+    pub valid_out: Signal<Out, Bit>,
+    pub tag_out: Signal<Out, Bits<TAG_BITS>>,
+    pub hit: Signal<Out, Bit>,
+    pub t_entry: Signal<Out, Bits<T>>,
+    pub t_exit: Signal<Out, Bits<T>>,
+    // constants
+    sign_n: Constant<Bits<N>>,
+    sign_t: Constant<Bits<T>>,
+    t_pinf: Constant<Bits<T>>,
+    t_ninf: Constant<Bits<T>>,
+    // the slab tester, in parallel
+    slab: SlabFix<G, D, I, T>,
+    // stage 1
+    sums: [PlaneSums<G, N, DB, WB, SB, EB>; K],
+    s_q1: [DFF<Bits<SB>>; K],
+    dl_q1: [DFF<Bits<EB>>; K],
+    dh_q1: [DFF<Bits<EB>>; K],
+    // stage 2 (eight slots; those from K on are constants)
+    bound: [PlaneBound<SB, EB, T>; K],
+    en_q2: [DFF<Bits<T>>; MAX_PLANES],
+    ex_q2: [DFF<Bits<T>>; MAX_PLANES],
+    par_q2: [DFF<Bit>; MAX_PLANES],
+    // stage 3, 4: tree levels
+    en_q3: [DFF<Bits<T>>; 4],
+    ex_q3: [DFF<Bits<T>>; 4],
+    par_q3: DFF<Bit>,
+    en_q4: [DFF<Bits<T>>; 2],
+    ex_q4: [DFF<Bits<T>>; 2],
+    par_q4: DFF<Bit>,
+    // stage 5: merged with the slab result
+    en_l5: Signal<Local, Bits<T>>,
+    ex_l5: Signal<Local, Bits<T>>,
+    entry_q5: DFF<Bits<T>>,
+    exit_q5: DFF<Bits<T>>,
+    live_q5: DFF<Bit>,
+    valid_q5: DFF<Bit>,
+    tag_q5: DFF<Bits<TAG_BITS>>,
+    // stage 6
+    entry_q6: DFF<Bits<T>>,
+    exit_q6: DFF<Bits<T>>,
+    hit_q6: DFF<Bit>,
+    valid_q6: DFF<Bit>,
+    tag_q6: DFF<Bits<TAG_BITS>>,
+}
+
+impl<
+        const G: usize,
+        const D: usize,
+        const I: usize,
+        const T: usize,
+        const N: usize,
+        const DB: usize,
+        const WB: usize,
+        const SB: usize,
+        const EB: usize,
+        const K: usize,
+    > PlaneFix<G, D, I, T, N, DB, WB, SB, EB, K>
+{
+    /// A tester for `cf`, whose widths must equal the parameters.
+    pub fn new(cf: &CullFixFormat) -> Self {
+        assert!(
+            cf.n as usize == N
+                && cf.d_bits() as usize == DB
+                && cf.w_bits() as usize == WB
+                && cf.s_bits() as usize == SB
+                && cf.den_bits() as usize == EB
+                && (1..=MAX_PLANES).contains(&K),
+            "PlaneFix<..,{N},{DB},{WB},{SB},{EB},{K}> does not match plane format {}",
+            cf.name()
+        );
+        let t = T as u32;
+        Self {
+            clock: Default::default(),
+            valid_in: Default::default(),
+            tag_in: Default::default(),
+            ray_o_lo: Default::default(),
+            ray_o_hi: Default::default(),
+            ray_m_lo: Default::default(),
+            ray_m_hi: Default::default(),
+            ray_neg: Default::default(),
+            ray_t_min: Default::default(),
+            ray_t_max: Default::default(),
+            ray_d_lo: Default::default(),
+            ray_d_hi: Default::default(),
+            box_lo: Default::default(),
+            box_hi: Default::default(),
+            plane_nx: std::array::from_fn(|_| Default::default()),
+            plane_ny: std::array::from_fn(|_| Default::default()),
+            plane_nz: std::array::from_fn(|_| Default::default()),
+            plane_w: std::array::from_fn(|_| Default::default()),
+            valid_out: Default::default(),
+            tag_out: Default::default(),
+            hit: Default::default(),
+            t_entry: Default::default(),
+            t_exit: Default::default(),
+            sign_n: Constant::new(bits::<N>(1 << (N - 1))),
+            sign_t: Constant::new(bits::<T>(1 << (t - 1))),
+            t_pinf: Constant::new(bits::<T>((1 << (t - 1)) - 1)),
+            t_ninf: Constant::new(bits::<T>(1 << (t - 1))),
+            slab: SlabFix::new(&cf.base),
+            sums: std::array::from_fn(|_| Default::default()),
+            s_q1: std::array::from_fn(|_| Default::default()),
+            dl_q1: std::array::from_fn(|_| Default::default()),
+            dh_q1: std::array::from_fn(|_| Default::default()),
+            bound: std::array::from_fn(|_| PlaneBound::new(cf.r, cf.c_shift())),
+            en_q2: Default::default(),
+            ex_q2: Default::default(),
+            par_q2: Default::default(),
+            en_q3: Default::default(),
+            ex_q3: Default::default(),
+            par_q3: Default::default(),
+            en_q4: Default::default(),
+            ex_q4: Default::default(),
+            par_q4: Default::default(),
+            en_l5: Default::default(),
+            ex_l5: Default::default(),
+            entry_q5: Default::default(),
+            exit_q5: Default::default(),
+            live_q5: Default::default(),
+            valid_q5: Default::default(),
+            tag_q5: Default::default(),
+            entry_q6: Default::default(),
+            exit_q6: Default::default(),
+            hit_q6: Default::default(),
+            valid_q6: Default::default(),
+            tag_q6: Default::default(),
+        }
+    }
+}
+
+/// A chained fixed tester of any width and plane count, built for a plane format.
+pub trait PlaneFixIo: SlabIo<Ray = NodeFixRay, Box = FixNode, Out = PlaneFixOut> {
+    /// Planes per node.
+    const PLANES: usize;
+    /// A tester for `cf` (whose widths must match the block's).
+    fn for_format(cf: &CullFixFormat) -> Self;
+}
+
+impl<
+        const G: usize,
+        const D: usize,
+        const I: usize,
+        const T: usize,
+        const N: usize,
+        const DB: usize,
+        const WB: usize,
+        const SB: usize,
+        const EB: usize,
+        const K: usize,
+    > PlaneFixIo for PlaneFix<G, D, I, T, N, DB, WB, SB, EB, K>
+{
+    const PLANES: usize = K;
+    fn for_format(cf: &CullFixFormat) -> Self {
+        Self::new(cf)
+    }
+}
+
+impl<
+        const G: usize,
+        const D: usize,
+        const I: usize,
+        const T: usize,
+        const N: usize,
+        const DB: usize,
+        const WB: usize,
+        const SB: usize,
+        const EB: usize,
+        const K: usize,
+    > SlabIo for PlaneFix<G, D, I, T, N, DB, WB, SB, EB, K>
+{
+    type Ray = NodeFixRay;
+    type Box = FixNode;
+    type Out = PlaneFixOut;
+    const LATENCY: usize = PLANE_FIX_LATENCY;
+
+    fn set_clock(&mut self, high: bool) {
+        self.clock.next = Clock { clk: high };
+    }
+
+    fn drive(&mut self, test: Option<(u16, &NodeFixRay, &FixNode)>) {
+        match test {
+            Some((tag, r, n)) => {
+                self.valid_in.next = true;
+                self.tag_in.next = bits::<TAG_BITS>(tag as u64);
+                let (ray, b) = (&r.ray, &n.b);
+                for a in 0..3 {
+                    self.ray_o_lo[a].next = bits::<G>(code(ray.o_lo[a], G));
+                    self.ray_o_hi[a].next = bits::<G>(code(ray.o_hi[a], G));
+                    self.ray_m_lo[a].next = bits::<I>(ray.m_lo[a]);
+                    self.ray_m_hi[a].next = bits::<I>(ray.m_hi[a]);
+                    self.ray_neg[a].next = ray.neg[a];
+                    self.ray_d_lo[a].next = bits::<DB>(code(r.dir.lo[a], DB));
+                    self.ray_d_hi[a].next = bits::<DB>(code(r.dir.hi[a], DB));
+                    self.box_lo[a].next = bits::<G>(code(b.lo[a], G));
+                    self.box_hi[a].next = bits::<G>(code(b.hi[a], G));
+                }
+                self.ray_t_min.next = bits::<T>(code(ray.t_min, T));
+                self.ray_t_max.next = bits::<T>(code(ray.t_max, T));
+                for k in 0..K {
+                    let p = &n.planes[k];
+                    self.plane_nx[k].next = bits::<N>(code(p.n[0], N));
+                    self.plane_ny[k].next = bits::<N>(code(p.n[1], N));
+                    self.plane_nz[k].next = bits::<N>(code(p.n[2], N));
+                    self.plane_w[k].next = bits::<WB>(code(p.w, WB));
+                }
+            }
+            None => self.valid_in.next = false,
+        }
+    }
+
+    fn result(&self) -> Option<(u16, PlaneFixOut)> {
+        if !self.valid_out.val() {
+            return None;
+        }
+        Some((
+            self.tag_out.val().to_u64() as u16,
+            PlaneFixOut {
+                hit: self.hit.val(),
+                t_entry: sext(self.t_entry.val().to_u64(), T),
+                t_exit: sext(self.t_exit.val().to_u64(), T),
+            },
+        ))
+    }
+
+    fn output_word(&self, port: &str) -> Option<u64> {
+        Some(match port {
+            "valid_out" => self.valid_out.val() as u64,
+            "tag_out" => self.tag_out.val().to_u64(),
+            "hit" => self.hit.val() as u64,
+            "t_entry" => self.t_entry.val().to_u64(),
+            "t_exit" => self.t_exit.val().to_u64(),
+            _ => return None,
+        })
+    }
+}
+
+impl<
+        const G: usize,
+        const D: usize,
+        const I: usize,
+        const T: usize,
+        const N: usize,
+        const DB: usize,
+        const WB: usize,
+        const SB: usize,
+        const EB: usize,
+        const K: usize,
+    > Logic for PlaneFix<G, D, I, T, N, DB, WB, SB, EB, K>
+{
+    #[hdl_gen]
+    fn update(&mut self) {
+        for k in 0..K {
+            self.s_q1[k].clock.next = self.clock.val();
+            self.dl_q1[k].clock.next = self.clock.val();
+            self.dh_q1[k].clock.next = self.clock.val();
+        }
+        for k in 0..MAX_PLANES {
+            self.en_q2[k].clock.next = self.clock.val();
+            self.ex_q2[k].clock.next = self.clock.val();
+            self.par_q2[k].clock.next = self.clock.val();
+        }
+        for k in 0..4 {
+            self.en_q3[k].clock.next = self.clock.val();
+            self.ex_q3[k].clock.next = self.clock.val();
+        }
+        for k in 0..2 {
+            self.en_q4[k].clock.next = self.clock.val();
+            self.ex_q4[k].clock.next = self.clock.val();
+        }
+        dff_setup!(
+            self, clock, par_q3, par_q4, entry_q5, exit_q5, live_q5, valid_q5, tag_q5, entry_q6,
+            exit_q6, hit_q6, valid_q6, tag_q6
+        );
+
+        // The slab tester, on the same inputs.
+        self.slab.clock.next = self.clock.val();
+        self.slab.valid_in.next = self.valid_in.val();
+        self.slab.tag_in.next = self.tag_in.val();
+        for a in 0..3 {
+            self.slab.ray_o_lo[a].next = self.ray_o_lo[a].val();
+            self.slab.ray_o_hi[a].next = self.ray_o_hi[a].val();
+            self.slab.ray_m_lo[a].next = self.ray_m_lo[a].val();
+            self.slab.ray_m_hi[a].next = self.ray_m_hi[a].val();
+            self.slab.ray_neg[a].next = self.ray_neg[a].val();
+            self.slab.box_lo[a].next = self.box_lo[a].val();
+            self.slab.box_hi[a].next = self.box_hi[a].val();
+        }
+        self.slab.ray_t_min.next = self.ray_t_min.val();
+        self.slab.ray_t_max.next = self.ray_t_max.val();
+
+        // Stage 1: each plane's sums, operands chosen by the sign of its normal components.
+        for k in 0..K {
+            self.sums[k].n0.next = self.plane_nx[k].val();
+            self.sums[k].n1.next = self.plane_ny[k].val();
+            self.sums[k].n2.next = self.plane_nz[k].val();
+            self.sums[k].w.next = self.plane_w[k].val();
+            self.sums[k].lo0.next = self.box_lo[0].val();
+            self.sums[k].lo1.next = self.box_lo[1].val();
+            self.sums[k].lo2.next = self.box_lo[2].val();
+            self.sums[k].hi0.next = self.box_hi[0].val();
+            self.sums[k].hi1.next = self.box_hi[1].val();
+            self.sums[k].hi2.next = self.box_hi[2].val();
+            if (self.plane_nx[k].val() & self.sign_n.val()).any() {
+                self.sums[k].p0.next = self.ray_o_hi[0].val();
+                self.sums[k].dl0.next = self.ray_d_hi[0].val();
+                self.sums[k].dh0.next = self.ray_d_lo[0].val();
+            } else {
+                self.sums[k].p0.next = self.ray_o_lo[0].val();
+                self.sums[k].dl0.next = self.ray_d_lo[0].val();
+                self.sums[k].dh0.next = self.ray_d_hi[0].val();
+            }
+            if (self.plane_ny[k].val() & self.sign_n.val()).any() {
+                self.sums[k].p1.next = self.ray_o_hi[1].val();
+                self.sums[k].dl1.next = self.ray_d_hi[1].val();
+                self.sums[k].dh1.next = self.ray_d_lo[1].val();
+            } else {
+                self.sums[k].p1.next = self.ray_o_lo[1].val();
+                self.sums[k].dl1.next = self.ray_d_lo[1].val();
+                self.sums[k].dh1.next = self.ray_d_hi[1].val();
+            }
+            if (self.plane_nz[k].val() & self.sign_n.val()).any() {
+                self.sums[k].p2.next = self.ray_o_hi[2].val();
+                self.sums[k].dl2.next = self.ray_d_hi[2].val();
+                self.sums[k].dh2.next = self.ray_d_lo[2].val();
+            } else {
+                self.sums[k].p2.next = self.ray_o_lo[2].val();
+                self.sums[k].dl2.next = self.ray_d_lo[2].val();
+                self.sums[k].dh2.next = self.ray_d_hi[2].val();
+            }
+            self.s_q1[k].d.next = self.sums[k].s.val();
+            self.dl_q1[k].d.next = self.sums[k].den_lo.val();
+            self.dh_q1[k].d.next = self.sums[k].den_hi.val();
+        }
+
+        // Stage 2: each plane's bound; unused slots hold -inf / +inf.
+        for k in 0..MAX_PLANES {
+            self.en_q2[k].d.next = self.t_ninf.val();
+            self.ex_q2[k].d.next = self.t_pinf.val();
+            self.par_q2[k].d.next = false;
+        }
+        for k in 0..K {
+            self.bound[k].s.next = self.s_q1[k].q.val();
+            self.bound[k].den_lo.next = self.dl_q1[k].q.val();
+            self.bound[k].den_hi.next = self.dh_q1[k].q.val();
+            if self.bound[k].is_entry.val() {
+                self.en_q2[k].d.next = self.bound[k].y.val();
+            }
+            if self.bound[k].is_exit.val() {
+                self.ex_q2[k].d.next = self.bound[k].y.val();
+            }
+            self.par_q2[k].d.next = self.bound[k].par.val();
+        }
+
+        // Stage 3: eight slots to four.
+        if (self.en_q2[1].q.val() ^ self.sign_t.val()) > (self.en_q2[0].q.val() ^ self.sign_t.val())
+        {
+            self.en_q3[0].d.next = self.en_q2[1].q.val();
+        } else {
+            self.en_q3[0].d.next = self.en_q2[0].q.val();
+        }
+        if (self.en_q2[3].q.val() ^ self.sign_t.val()) > (self.en_q2[2].q.val() ^ self.sign_t.val())
+        {
+            self.en_q3[1].d.next = self.en_q2[3].q.val();
+        } else {
+            self.en_q3[1].d.next = self.en_q2[2].q.val();
+        }
+        if (self.en_q2[5].q.val() ^ self.sign_t.val()) > (self.en_q2[4].q.val() ^ self.sign_t.val())
+        {
+            self.en_q3[2].d.next = self.en_q2[5].q.val();
+        } else {
+            self.en_q3[2].d.next = self.en_q2[4].q.val();
+        }
+        if (self.en_q2[7].q.val() ^ self.sign_t.val()) > (self.en_q2[6].q.val() ^ self.sign_t.val())
+        {
+            self.en_q3[3].d.next = self.en_q2[7].q.val();
+        } else {
+            self.en_q3[3].d.next = self.en_q2[6].q.val();
+        }
+        if (self.ex_q2[1].q.val() ^ self.sign_t.val()) < (self.ex_q2[0].q.val() ^ self.sign_t.val())
+        {
+            self.ex_q3[0].d.next = self.ex_q2[1].q.val();
+        } else {
+            self.ex_q3[0].d.next = self.ex_q2[0].q.val();
+        }
+        if (self.ex_q2[3].q.val() ^ self.sign_t.val()) < (self.ex_q2[2].q.val() ^ self.sign_t.val())
+        {
+            self.ex_q3[1].d.next = self.ex_q2[3].q.val();
+        } else {
+            self.ex_q3[1].d.next = self.ex_q2[2].q.val();
+        }
+        if (self.ex_q2[5].q.val() ^ self.sign_t.val()) < (self.ex_q2[4].q.val() ^ self.sign_t.val())
+        {
+            self.ex_q3[2].d.next = self.ex_q2[5].q.val();
+        } else {
+            self.ex_q3[2].d.next = self.ex_q2[4].q.val();
+        }
+        if (self.ex_q2[7].q.val() ^ self.sign_t.val()) < (self.ex_q2[6].q.val() ^ self.sign_t.val())
+        {
+            self.ex_q3[3].d.next = self.ex_q2[7].q.val();
+        } else {
+            self.ex_q3[3].d.next = self.ex_q2[6].q.val();
+        }
+        self.par_q3.d.next = self.par_q2[0].q.val()
+            | self.par_q2[1].q.val()
+            | self.par_q2[2].q.val()
+            | self.par_q2[3].q.val()
+            | self.par_q2[4].q.val()
+            | self.par_q2[5].q.val()
+            | self.par_q2[6].q.val()
+            | self.par_q2[7].q.val();
+
+        // Stage 4: four to two.
+        if (self.en_q3[1].q.val() ^ self.sign_t.val()) > (self.en_q3[0].q.val() ^ self.sign_t.val())
+        {
+            self.en_q4[0].d.next = self.en_q3[1].q.val();
+        } else {
+            self.en_q4[0].d.next = self.en_q3[0].q.val();
+        }
+        if (self.en_q3[3].q.val() ^ self.sign_t.val()) > (self.en_q3[2].q.val() ^ self.sign_t.val())
+        {
+            self.en_q4[1].d.next = self.en_q3[3].q.val();
+        } else {
+            self.en_q4[1].d.next = self.en_q3[2].q.val();
+        }
+        if (self.ex_q3[1].q.val() ^ self.sign_t.val()) < (self.ex_q3[0].q.val() ^ self.sign_t.val())
+        {
+            self.ex_q4[0].d.next = self.ex_q3[1].q.val();
+        } else {
+            self.ex_q4[0].d.next = self.ex_q3[0].q.val();
+        }
+        if (self.ex_q3[3].q.val() ^ self.sign_t.val()) < (self.ex_q3[2].q.val() ^ self.sign_t.val())
+        {
+            self.ex_q4[1].d.next = self.ex_q3[3].q.val();
+        } else {
+            self.ex_q4[1].d.next = self.ex_q3[2].q.val();
+        }
+        self.par_q4.d.next = self.par_q3.q.val();
+
+        // Stage 5: the last level, merged with the slab tester's interval.
+        self.en_l5.next = self.en_q4[0].q.val();
+        if (self.en_q4[1].q.val() ^ self.sign_t.val()) > (self.en_q4[0].q.val() ^ self.sign_t.val())
+        {
+            self.en_l5.next = self.en_q4[1].q.val();
+        }
+        self.ex_l5.next = self.ex_q4[0].q.val();
+        if (self.ex_q4[1].q.val() ^ self.sign_t.val()) < (self.ex_q4[0].q.val() ^ self.sign_t.val())
+        {
+            self.ex_l5.next = self.ex_q4[1].q.val();
+        }
+        if (self.en_l5.val() ^ self.sign_t.val()) > (self.slab.t_entry.val() ^ self.sign_t.val()) {
+            self.entry_q5.d.next = self.en_l5.val();
+        } else {
+            self.entry_q5.d.next = self.slab.t_entry.val();
+        }
+        if (self.ex_l5.val() ^ self.sign_t.val()) < (self.slab.t_exit.val() ^ self.sign_t.val()) {
+            self.exit_q5.d.next = self.ex_l5.val();
+        } else {
+            self.exit_q5.d.next = self.slab.t_exit.val();
+        }
+        self.live_q5.d.next = self.slab.hit.val() & !self.par_q4.q.val();
+        self.valid_q5.d.next = self.slab.valid_out.val();
+        self.tag_q5.d.next = self.slab.tag_out.val();
+
+        // Stage 6: the cull decision.
+        self.entry_q6.d.next = self.entry_q5.q.val();
+        self.exit_q6.d.next = self.exit_q5.q.val();
+        self.hit_q6.d.next = self.live_q5.q.val()
+            & ((self.entry_q5.q.val() ^ self.sign_t.val())
+                <= (self.exit_q5.q.val() ^ self.sign_t.val()));
+        self.valid_q6.d.next = self.valid_q5.q.val();
+        self.tag_q6.d.next = self.tag_q5.q.val();
+
+        self.valid_out.next = self.valid_q6.q.val();
+        self.tag_out.next = self.tag_q6.q.val();
+        self.hit.next = self.hit_q6.q.val();
+        self.t_entry.next = self.entry_q6.q.val();
+        self.t_exit.next = self.exit_q6.q.val();
+    }
+}

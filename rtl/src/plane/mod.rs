@@ -1,0 +1,28 @@
+//! The cull-plane testers: the slab tester chained with `K` planes (models: `golden::plane`).
+//!
+//! | block | file | model it matches |
+//! | --- | --- | --- |
+//! | [`fix::PlaneFix`] | `plane/fix.rs` | `golden::plane::fix::node_fix` |
+//! | [`sums::PlaneSums`] | `plane/sums.rs` | `golden::plane::fix::plane_sums` |
+//! | [`bound::PlaneBound`] | `plane/bound.rs` | `golden::plane::fix::bound_from_sums` |
+//! | [`float::PlaneFloat`] | `plane/float.rs` | `golden::plane::float::cull_float` |
+//! | [`recip::FpRecip`] | `plane/recip.rs` | `golden::plane::float::recip_float` |
+//! | [`quot::PlaneFrac`] | `plane/quot.rs` | [`quot::node_frac`] (the quotient option: bounds kept as exact quotients) |
+//! | [`quot_bound::PlaneFracBound`] | `plane/quot_bound.rs` | `golden::plane::fix::cull_fix_fractions` |
+//! | [`quot_cmp::FracCmp`], [`quot_code_cmp::CodeFracCmp`], [`quot_pick::FracPick`], [`quot_tree::FracTree`] | `plane/quot_*.rs` | orderings of quotients by cross-multiplication |
+//!
+//! Which configurations exist: [`registry`]; the float tester's export and dispatch: [`float_export`].
+
+pub mod bound;
+pub mod fix;
+pub mod float;
+pub mod float_export;
+pub mod quot;
+pub mod quot_bound;
+pub mod quot_cmp;
+pub mod quot_code_cmp;
+pub mod quot_pick;
+pub mod quot_tree;
+pub mod recip;
+pub mod registry;
+pub mod sums;

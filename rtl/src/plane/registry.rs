@@ -1,0 +1,46 @@
+//! The cull-plane testers that exist: the fixed tester over each preset grid (table option and the
+//! quotient option) and the float tester in binary16, bfloat16 and binary32 with K planes.
+
+use super::fix::PlaneFix;
+use super::float::PlaneFloat;
+use super::quot::PlaneFrac;
+
+/// The chained slab + cull-plane tester over b12 with the default plane format (`N = 8`, `FD = 11`,
+/// `R = 8`) and `K` planes.
+pub type PlaneFixB12<const K: usize> = PlaneFix<12, 13, 16, 20, 8, 14, 24, 25, 23, K>;
+/// The same over b8 (`FD = 8`).
+pub type PlaneFixB8<const K: usize> = PlaneFix<8, 9, 12, 14, 8, 11, 20, 21, 20, K>;
+/// The same over b16 (`FD = 14`).
+pub type PlaneFixB16<const K: usize> = PlaneFix<16, 17, 20, 24, 8, 17, 28, 29, 26, K>;
+
+/// The chained float node tester (slab + 1 cull plane) in binary16.
+pub type PlaneFloatE5M10K1 = PlaneFloat<5, 10, 16, 1>;
+/// The chained float node tester (slab + 2 cull planes) in binary16.
+pub type PlaneFloatE5M10K2 = PlaneFloat<5, 10, 16, 2>;
+/// The chained float node tester (slab + 4 cull planes) in binary16.
+pub type PlaneFloatE5M10K4 = PlaneFloat<5, 10, 16, 4>;
+/// The chained float node tester (slab + 8 cull planes, the most) in binary16.
+pub type PlaneFloatE5M10K8 = PlaneFloat<5, 10, 16, 8>;
+/// The chained float node tester (slab + 1 cull plane) in bfloat16.
+pub type PlaneFloatE8M7K1 = PlaneFloat<8, 7, 16, 1>;
+/// The chained float node tester (slab + 2 cull planes) in bfloat16.
+pub type PlaneFloatE8M7K2 = PlaneFloat<8, 7, 16, 2>;
+/// The chained float node tester (slab + 4 cull planes) in bfloat16.
+pub type PlaneFloatE8M7K4 = PlaneFloat<8, 7, 16, 4>;
+/// The chained float node tester (slab + 1 cull plane) in binary32.
+pub type PlaneFloatE8M23K1 = PlaneFloat<8, 23, 32, 1>;
+/// The chained float node tester (slab + 2 cull planes) in binary32.
+pub type PlaneFloatE8M23K2 = PlaneFloat<8, 23, 32, 2>;
+/// The chained float node tester (slab + 4 cull planes) in binary32.
+pub type PlaneFloatE8M23K4 = PlaneFloat<8, 23, 32, 4>;
+
+/// The fraction option of the chained tester ([`PlaneFrac`]) over b12 (`N = 8`, `FD = 11`)
+/// with `K` planes.
+pub type PlaneFracB12<const K: usize> =
+    PlaneFrac<12, 13, 16, 20, 8, 14, 24, 25, 23, 22, 47, K>;
+/// The same over b8 (`FD = 8`).
+pub type PlaneFracB8<const K: usize> =
+    PlaneFrac<8, 9, 12, 14, 8, 11, 20, 21, 20, 19, 40, K>;
+/// The same over b16 (`FD = 14`).
+pub type PlaneFracB16<const K: usize> =
+    PlaneFrac<16, 17, 20, 24, 8, 17, 28, 29, 26, 25, 54, K>;

@@ -1,0 +1,571 @@
+//! Testbench glue of the bundle results processor ([`rtl::bundle::split::BundleSplit`]): a rust-hdl driver
+//! with optional VCD, a seeded clock-by-clock stimulus with the outputs the model predicts for every
+//! clock, a checker, Verilator port encoding and a cross-simulation loop.
+//!
+//! The stimulus is job-level and open-loop: it plans each job from the model (`split_fix` and
+//! `rtl::bundle::split::split_clocks`), so it knows in which clock `ready` must be low and in which clock
+//! `done` must pulse; the same records then drive the rust-hdl simulation and the Verilated Verilog.
+//! A job loads a ray set (BundleGen case rays quantised as tiny bundles, sometimes padded to 16 with rays
+//! of other cases, sometimes with raw codes) one ray a clock in random order with idle clocks between, or
+//! reuses the loaded set back to back (the next start in the clock of `done`) with a new box and active
+//! mask. While a job runs, the stimulus writes garbage to ray addresses outside the set and asserts
+//! `start` with a junk job, both of which the block must ignore.
+
+use crate::bundle::pair_fix::{quantised_case, raw_bundle};
+use crate::campaign::{campaign_bounds, campaign_map};
+use crate::rtl_sim::HALF_PERIOD;
+use crate::verilator::Harness;
+use golden::bundle::fix::{BundleFixFormat, FixBundle};
+use golden::bundle::gen::BundleGen;
+use golden::bundle::split::{split_fix, SplitResult};
+use golden::format::fixed::GridMap;
+use rand::seq::SliceRandom;
+use rand::{Rng, SeedableRng};
+use rand_pcg::Pcg64;
+use rtl::bundle::split::{split_clocks, BundleSplitIo, SplitIn, SplitJob, SplitOut, SPLIT_RAYS};
+use rtl::slab::fix::code;
+use rust_hdl::core::vcd_probe::{write_vcd_change, write_vcd_dump, write_vcd_header, VCDProbe};
+use rust_hdl::prelude::*;
+use std::collections::VecDeque;
+use std::fs::File;
+use std::io::BufWriter;
+use std::path::Path;
+use std::sync::mpsc::sync_channel;
+
+/// The ray store as the model sees it.
+pub type RayStore = [FixBundle; SPLIT_RAYS];
+
+/// A results processor in simulation (the direct loop of [`crate::rtl_sim`]).
+pub struct SplitRtl<S: BundleSplitIo> {
+    pub uut: S,
+    vcd: Option<VCDProbe<BufWriter<File>>>,
+    cycle: u64,
+}
+
+impl<S: BundleSplitIo> SplitRtl<S> {
+    /// The block for `bf`, connected.
+    pub fn new(bf: &BundleFixFormat) -> Self {
+        let mut uut = S::for_format(bf);
+        uut.connect_all();
+        SplitRtl {
+            uut,
+            vcd: None,
+            cycle: 0,
+        }
+    }
+
+    /// Starts writing every signal of the block to a VCD file at `path`.
+    pub fn vcd_to(mut self, path: &Path) -> std::io::Result<Self> {
+        if let Some(d) = path.parent() {
+            std::fs::create_dir_all(d)?;
+        }
+        let w = BufWriter::new(File::create(path)?);
+        let v = write_vcd_header(w, &self.uut);
+        self.vcd = Some(write_vcd_dump(v, &self.uut));
+        Ok(self)
+    }
+
+    fn settle(&mut self, t: u64) {
+        if !simulate(&mut self.uut, 1000) {
+            panic!(
+                "the results processor failed to converge in cycle {}",
+                self.cycle
+            );
+        }
+        if let Some(mut v) = self.vcd.take() {
+            v.timestamp(t).expect("VCD write");
+            self.vcd = Some(write_vcd_change(v, &self.uut));
+        }
+    }
+
+    /// One clock: drive the inputs of this cycle, clock, and return the outputs of the next cycle.
+    pub fn step(&mut self, input: &SplitIn) -> SplitOut {
+        self.uut.drive(input);
+        self.uut.set_clock(false);
+        let t = self.cycle * 2 * HALF_PERIOD;
+        self.settle(t);
+        self.uut.set_clock(true);
+        self.settle(t + HALF_PERIOD);
+        self.cycle += 1;
+        self.uut.outputs()
+    }
+}
+
+/// A job's report as the model predicts it, with what produced it.
+#[derive(Clone, Debug)]
+pub struct SplitDone {
+    pub job: SplitJob,
+    /// The ray store when the job started.
+    pub store: Box<RayStore>,
+    pub result: SplitResult,
+    /// Clocks from start to done.
+    pub clocks: u32,
+    /// The job started in the clock its predecessor reported.
+    pub back_to_back: bool,
+}
+
+/// The outputs the model predicts after one clock: `ready`, and the report when `done` pulses.
+#[derive(Clone, Debug)]
+pub struct SplitExpect {
+    pub ready: bool,
+    pub done: Option<SplitDone>,
+}
+
+/// The model of one job over the ray store: `golden::bundle::split::split_fix`.
+pub fn split_model(bf: &BundleFixFormat, job: &SplitJob, store: &RayStore) -> SplitResult {
+    split_fix(bf, &job.bundle, &job.boxes, store, job.active as u64)
+}
+
+/// A seeded clock-by-clock stimulus of `jobs` jobs with the outputs `model` predicts (see the module
+/// doc). `quiet` leaves out the junk starts and garbage writes (for waveforms that count `start`).
+pub struct SplitStim<M> {
+    bf: BundleFixFormat,
+    map: GridMap,
+    gen: BundleGen,
+    rng: Pcg64,
+    store: RayStore,
+    /// Rays of the loaded set, and its bundle.
+    n: usize,
+    bundle: FixBundle,
+    jobs_left: u64,
+    queue: VecDeque<(SplitIn, SplitExpect)>,
+    quiet: bool,
+    model: M,
+}
+
+impl<M: Fn(&BundleFixFormat, &SplitJob, &RayStore) -> SplitResult> SplitStim<M> {
+    pub fn new(bf: BundleFixFormat, seed: u64, jobs: u64, quiet: bool, model: M) -> Self {
+        let (lo, hi) = campaign_bounds();
+        SplitStim {
+            bf,
+            map: campaign_map(bf.base),
+            gen: BundleGen::new(seed, lo, hi, 0.6),
+            rng: Pcg64::seed_from_u64(seed ^ 0x9e37_79b9),
+            store: [FixBundle::default(); SPLIT_RAYS],
+            n: 0,
+            bundle: FixBundle::default(),
+            jobs_left: jobs,
+            queue: VecDeque::new(),
+            quiet,
+            model,
+        }
+    }
+
+    /// A quantised case: bundle, box pair, rays (1 to 16).
+    fn draw_case(
+        &mut self,
+    ) -> (
+        FixBundle,
+        golden::bundle::edge::BoxPair<golden::format::fixed::FixBox>,
+        Vec<FixBundle>,
+    ) {
+        loop {
+            let c = if self.rng.gen_ratio(1, 8) {
+                self.gen.grid_one_ray(&self.map)
+            } else {
+                self.gen.next_case()
+            };
+            if let Some(q) = quantised_case(&self.bf, &self.map, &c) {
+                return q;
+            }
+        }
+    }
+
+    /// A new ray set: a case's rays, sometimes padded to 16 with rays of other cases, sometimes with
+    /// some rays replaced by raw codes.
+    fn draw_set(
+        &mut self,
+    ) -> (
+        FixBundle,
+        golden::bundle::edge::BoxPair<golden::format::fixed::FixBox>,
+        Vec<FixBundle>,
+    ) {
+        let (b, p, mut rays) = self.draw_case();
+        if self.rng.gen_ratio(1, 5) {
+            while rays.len() < SPLIT_RAYS {
+                let more = self.draw_case().2;
+                rays.extend(more);
+            }
+        }
+        rays.truncate(SPLIT_RAYS);
+        if self.rng.gen_ratio(1, 10) {
+            for r in rays.iter_mut() {
+                if self.rng.gen_ratio(1, 3) {
+                    *r = *raw_bundle(&self.bf, &mut self.rng).0.sides().0;
+                }
+            }
+        }
+        (b, p, rays)
+    }
+
+    fn active_mask(&mut self) -> u16 {
+        let all = ((1u32 << self.n) - 1) as u16;
+        match self.rng.gen_range(0..16) {
+            0 => 0,
+            1..=4 => all,
+            5 | 6 => 1 << self.rng.gen_range(0..self.n),
+            _ => self.rng.gen::<u16>() & all,
+        }
+    }
+
+    /// A junk job (for starts while busy).
+    fn junk(&mut self) -> SplitJob {
+        let (b, p, _) = self.draw_case();
+        SplitJob {
+            bundle: b,
+            boxes: p,
+            active: self.rng.gen(),
+        }
+    }
+
+    fn plan_job(&mut self) {
+        let idle = SplitExpect {
+            ready: true,
+            done: None,
+        };
+        let reuse = self.n > 0 && self.rng.gen_ratio(1, 3);
+        let boxes;
+        if reuse {
+            boxes = self.draw_case().1;
+        } else {
+            let (b, p, rays) = self.draw_set();
+            let mut order: Vec<usize> = (0..rays.len()).collect();
+            order.shuffle(&mut self.rng);
+            for a in order {
+                if self.rng.gen_ratio(1, 4) {
+                    for _ in 0..self.rng.gen_range(1..=3) {
+                        self.queue.push_back((SplitIn::default(), idle.clone()));
+                    }
+                }
+                self.store[a] = rays[a];
+                self.queue.push_back((
+                    SplitIn {
+                        write: Some((a, rays[a])),
+                        start: None,
+                    },
+                    idle.clone(),
+                ));
+            }
+            self.n = rays.len();
+            self.bundle = b;
+            boxes = p;
+        }
+        if self.rng.gen_ratio(1, if reuse { 3 } else { 2 }) {
+            for _ in 0..self.rng.gen_range(1..=3) {
+                self.queue.push_back((SplitIn::default(), idle.clone()));
+            }
+        }
+        let back_to_back = reuse && self.queue.is_empty();
+        let job = SplitJob {
+            bundle: self.bundle,
+            boxes,
+            active: self.active_mask(),
+        };
+        // The last ray written in the start clock itself, sometimes (the contract allows it).
+        let mut start = SplitIn {
+            write: None,
+            start: Some(job),
+        };
+        if !reuse && self.rng.gen_ratio(1, 4) {
+            if let Some((SplitIn { write: Some(w), .. }, _)) = self.queue.back() {
+                start.write = Some(*w);
+                self.queue.pop_back();
+            }
+        }
+        let result = (self.model)(&self.bf, &job, &self.store);
+        let clocks = split_clocks(&result);
+        let done = SplitDone {
+            job,
+            store: Box::new(self.store),
+            result,
+            clocks,
+            back_to_back,
+        };
+        self.queue.push_back((
+            start,
+            SplitExpect {
+                ready: false,
+                done: None,
+            },
+        ));
+        for k in 1..clocks {
+            let mut input = SplitIn::default();
+            if !self.quiet && self.n < SPLIT_RAYS && self.rng.gen_ratio(1, 4) {
+                let a = self.rng.gen_range(self.n..SPLIT_RAYS);
+                let r = *raw_bundle(&self.bf, &mut self.rng).0.sides().0;
+                self.store[a] = r;
+                input.write = Some((a, r));
+            }
+            if !self.quiet && self.rng.gen_ratio(1, 8) {
+                input.start = Some(self.junk());
+            }
+            let last = k == clocks - 1;
+            self.queue.push_back((
+                input,
+                SplitExpect {
+                    ready: last,
+                    done: last.then(|| done.clone()),
+                },
+            ));
+        }
+    }
+}
+
+impl<M: Fn(&BundleFixFormat, &SplitJob, &RayStore) -> SplitResult> Iterator for SplitStim<M> {
+    type Item = (SplitIn, SplitExpect);
+    fn next(&mut self) -> Option<Self::Item> {
+        if self.queue.is_empty() {
+            if self.jobs_left == 0 {
+                return None;
+            }
+            self.jobs_left -= 1;
+            self.plan_job();
+        }
+        self.queue.pop_front()
+    }
+}
+
+/// What a run covered: jobs by outcome, rays tested one by one, odd ray counts, back-to-back starts.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub struct SplitStats {
+    pub cycles: u64,
+    pub jobs: u64,
+    pub all_hit: u64,
+    pub all_miss: u64,
+    pub split: u64,
+    pub split_rays: u64,
+    pub odd_splits: u64,
+    pub full_splits: u64,
+    pub back_to_back: u64,
+}
+
+impl SplitStats {
+    fn count(&mut self, d: &SplitDone) {
+        self.jobs += 1;
+        let r = &d.result;
+        if r.all_hit {
+            self.all_hit += 1;
+        } else if r.all_miss {
+            self.all_miss += 1;
+        } else {
+            self.split += 1;
+            let n = d.job.active.count_ones() as u64;
+            self.split_rays += n;
+            self.odd_splits += n % 2;
+            self.full_splits += (n == SPLIT_RAYS as u64) as u64;
+        }
+        self.back_to_back += d.back_to_back as u64;
+    }
+}
+
+/// Compares one clock's outputs with the expectation: `ready` and `done` always, the report with `done`.
+fn check_out(cycle: u64, got: &SplitOut, exp: &SplitExpect) -> Result<(), String> {
+    let ok = got.ready == exp.ready
+        && got.done == exp.done.is_some()
+        && exp
+            .done
+            .as_ref()
+            .is_none_or(|d| got.result() == d.result && got.clocks as u32 == d.clocks);
+    if ok {
+        return Ok(());
+    }
+    Err(format!(
+        "cycle {}: got {got:?}\n  expected ready {} done {}\n{}",
+        cycle + 1,
+        exp.ready,
+        exp.done.is_some(),
+        match &exp.done {
+            Some(d) => format!(
+                "  expected {:?} in {} clocks\n  job {:?}\n  active rays {:?}",
+                d.result,
+                d.clocks,
+                d.job,
+                (0..SPLIT_RAYS)
+                    .filter(|i| d.job.active >> i & 1 == 1)
+                    .map(|i| (i, d.store[i]))
+                    .collect::<Vec<_>>()
+            ),
+            None => "  (no report due)".into(),
+        }
+    ))
+}
+
+/// Runs `stim` through the rust-hdl simulation and checks every clock.
+pub fn run_split<S: BundleSplitIo>(
+    dut: &mut SplitRtl<S>,
+    stim: impl IntoIterator<Item = (SplitIn, SplitExpect)>,
+) -> Result<SplitStats, String> {
+    let mut stats = SplitStats::default();
+    for (cycle, (input, exp)) in stim.into_iter().enumerate() {
+        let got = dut.step(&input);
+        check_out(cycle as u64, &got, &exp)?;
+        if let Some(d) = &exp.done {
+            stats.count(d);
+        }
+        stats.cycles += 1;
+    }
+    Ok(stats)
+}
+
+/// The value of input port `port` (a Verilog name such as `ray_d_lo$1`) in one clock.
+pub fn split_in_word(bf: &BundleFixFormat, port: &str, input: &SplitIn) -> Result<u64, String> {
+    let (base, idx) = match port.split_once('$') {
+        Some((b, i)) => (
+            b,
+            i.parse::<usize>()
+                .map_err(|e| format!("port {port}: {e}"))?,
+        ),
+        None => (port, 0),
+    };
+    let (g, d, t) = (
+        bf.base.g as usize,
+        bf.dir_bits() as usize,
+        bf.base.t as usize,
+    );
+    let (addr, r) = input.write.unwrap_or_default();
+    let j = input.start.unwrap_or_default();
+    let (b, p) = (&j.bundle, &j.boxes);
+    Ok(match base {
+        "ray_we" => input.write.is_some() as u64,
+        "ray_addr" => addr as u64,
+        "ray_o_lo" => code(r.o_lo[idx], g),
+        "ray_o_hi" => code(r.o_hi[idx], g),
+        "ray_d_lo" => code(r.d_lo[idx], d),
+        "ray_d_hi" => code(r.d_hi[idx], d),
+        "ray_t" => code(r.t_hi, t),
+        "start" => input.start.is_some() as u64,
+        "o_lo" => code(b.o_lo[idx], g),
+        "o_hi" => code(b.o_hi[idx], g),
+        "d_lo" => code(b.d_lo[idx], d),
+        "d_hi" => code(b.d_hi[idx], d),
+        "t_lo" => code(b.t_lo, t),
+        "t_hi" => code(b.t_hi, t),
+        "in_lo" => code(p.inner.lo[idx], g),
+        "in_hi" => code(p.inner.hi[idx], g),
+        "out_lo" => code(p.outer.lo[idx], g),
+        "out_hi" => code(p.outer.hi[idx], g),
+        "active" => j.active as u64,
+        _ => return Err(format!("unknown input port {port}")),
+    })
+}
+
+/// Streams `stim` through the Verilator `harness` and checks every clock against the model's
+/// expectation, and, for the first `lockstep_cycles` clocks, every output port against the rust-hdl
+/// simulation of the block driven with the same inputs.
+pub fn split_xsim<S: BundleSplitIo, It>(
+    bf: BundleFixFormat,
+    harness: &Harness,
+    stim: It,
+    lockstep_cycles: u64,
+) -> Result<SplitStats, String>
+where
+    It: Iterator<Item = (SplitIn, SplitExpect)> + Send + 'static,
+{
+    let ports: Vec<String> = harness.inputs.iter().map(|p| p.name.clone()).collect();
+    let (tx, rx) = sync_channel::<(SplitIn, SplitExpect)>(1 << 14);
+    let records = stim.map(move |(input, exp)| {
+        let rec = ports
+            .iter()
+            .map(|p| split_in_word(&bf, p, &input).expect("known port"))
+            .collect();
+        tx.send((input, exp)).expect("consumer alive");
+        rec
+    });
+    let mut rtl = (lockstep_cycles > 0).then(|| SplitRtl::<S>::new(&bf));
+    let mut stats = SplitStats::default();
+    let word = |out: &[u64], name: &str| -> Result<u64, String> {
+        harness
+            .output_index(name)
+            .map(|k| out[k])
+            .ok_or_else(|| format!("no output port {name}"))
+    };
+    let cycles = harness.stream(records, |cycle, out| {
+        let (input, exp) = rx.recv().map_err(|_| "producer ended early".to_string())?;
+        let got = SplitOut {
+            ready: word(out, "ready")? != 0,
+            done: word(out, "done")? != 0,
+            all_hit: word(out, "all_hit")? != 0,
+            all_miss: word(out, "all_miss")? != 0,
+            split: word(out, "split")? != 0,
+            mask: word(out, "mask")? as u16,
+            cycles: word(out, "cycles")? as u8,
+            clocks: word(out, "clocks")? as u8,
+        };
+        check_out(cycle, &got, &exp).map_err(|e| format!("Verilator: {e}"))?;
+        if cycle >= lockstep_cycles {
+            rtl = None;
+        }
+        if let Some(sim) = rtl.as_mut() {
+            let s = sim.step(&input);
+            if s != got {
+                return Err(format!(
+                    "cycle {}: Verilator {got:?}, rust-hdl simulation {s:?}",
+                    cycle + 1
+                ));
+            }
+        }
+        if let Some(d) = &exp.done {
+            stats.count(d);
+        }
+        Ok(())
+    })?;
+    stats.cycles = cycles;
+    Ok(stats)
+}
+
+/// A directed stimulus: `rays` written to addresses 0.. one a clock, then `jobs` back to back (each
+/// started in the clock its predecessor reports), with the outputs `model` predicts.
+pub fn directed(
+    bf: &BundleFixFormat,
+    rays: &[FixBundle],
+    jobs: &[SplitJob],
+    model: impl Fn(&BundleFixFormat, &SplitJob, &RayStore) -> SplitResult,
+) -> Vec<(SplitIn, SplitExpect)> {
+    let mut store = [FixBundle::default(); SPLIT_RAYS];
+    let mut out = vec![];
+    for (a, r) in rays.iter().enumerate().take(SPLIT_RAYS) {
+        store[a] = *r;
+        out.push((
+            SplitIn {
+                write: Some((a, *r)),
+                start: None,
+            },
+            SplitExpect {
+                ready: true,
+                done: None,
+            },
+        ));
+    }
+    for (k, job) in jobs.iter().enumerate() {
+        let result = model(bf, job, &store);
+        let clocks = split_clocks(&result);
+        let start = SplitIn {
+            write: None,
+            start: Some(*job),
+        };
+        out.push((
+            start,
+            SplitExpect {
+                ready: false,
+                done: None,
+            },
+        ));
+        for c in 1..clocks {
+            let last = c == clocks - 1;
+            out.push((
+                SplitIn::default(),
+                SplitExpect {
+                    ready: last,
+                    done: last.then(|| SplitDone {
+                        job: *job,
+                        store: Box::new(store),
+                        result,
+                        clocks,
+                        back_to_back: k > 0,
+                    }),
+                },
+            ));
+        }
+    }
+    out
+}

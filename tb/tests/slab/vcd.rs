@@ -1,0 +1,67 @@
+//! Waveforms: the rust-hdl simulation writes a VCD on request; reading it back with the `vcd` crate,
+//! for the fixed and the float tester,
+//! `valid_out` rises exactly SLAB_FIX_LATENCY clock edges after `valid_in`, for single tests separated
+//! by bubbles and for a back-to-back burst.
+
+use golden::format::fixed::FixFormat;
+use golden::slab::gen::GenKind;
+use golden::slab::fix::slab_fix;
+use tb::campaign::slab_vectors;
+use tb::dut::run_checked;
+use tb::rtl_sim::SlabFixRtl;
+use tb::vcd_read::read_trace;
+
+#[test]
+fn valid_leaves_latency_clocks_after_it_enters() {
+    let fmt = FixFormat::b12();
+    let path = tb::out_dir().join("vcd").join("slab_fix_b12_latency.vcd");
+    let tests: Vec<_> = slab_vectors(fmt, GenKind::Mixed, 11, 6, false).collect();
+    // Three isolated tests (each followed by 6 bubbles), then three back to back.
+    let mut stream = vec![];
+    for t in &tests[..3] {
+        stream.push(*t);
+        stream.extend(std::iter::repeat_n(None, 6));
+    }
+    stream.extend(tests[3..].iter().cloned());
+    {
+        let mut dut = SlabFixRtl::<rtl::SlabFixB12>::with_vcd(&fmt, &path).unwrap();
+        let n = run_checked(&mut dut, stream, |v| slab_fix(&fmt, &v.0, &v.1))
+            .unwrap_or_else(|e| panic!("{e}"));
+        assert_eq!(n, 6);
+    }
+    let trace = read_trace(&path, &["valid_in", "valid_out"]).unwrap();
+    // Isolated tests: one rise each; the burst: one more rise.
+    trace
+        .check_valid_latency(4, rtl::SLAB_FIX_LATENCY)
+        .unwrap_or_else(|e| panic!("{e}"));
+}
+
+/// The same for the float tester (binary16): `valid_out` rises SLAB_FLOAT_LATENCY edges after `valid_in`.
+#[test]
+fn float_valid_leaves_latency_clocks_after_it_enters() {
+    use golden::format::float::FloatFormat;
+    use golden::slab::float::{quantize_box, quantize_ray, slab_float};
+    let f = FloatFormat::FP16;
+    let path = tb::out_dir()
+        .join("vcd")
+        .join("slab_float_e5m10_latency.vcd");
+    let (lo, hi) = tb::campaign::campaign_bounds();
+    let tests: Vec<_> = golden::slab::gen::SlabGen::new(GenKind::Mixed, lo, hi, 1.0 / 64.0, 12)
+        .take(4)
+        .map(|(r, b)| Some((quantize_ray(&f, &r).unwrap(), quantize_box(&f, &b).unwrap())))
+        .collect();
+    let mut stream = vec![tests[0]];
+    stream.extend(std::iter::repeat_n(None, 12));
+    stream.extend(tests[1..].iter().cloned());
+    {
+        let mut dut =
+            tb::rtl_sim::SlabFloatRtl::<rtl::SlabFloatE5M10>::float_with_vcd(&path).unwrap();
+        let n = run_checked(&mut dut, stream, |v| slab_float(&f, &v.0, &v.1))
+            .unwrap_or_else(|e| panic!("{e}"));
+        assert_eq!(n, 4);
+    }
+    let trace = read_trace(&path, &["valid_in", "valid_out"]).unwrap();
+    trace
+        .check_valid_latency(2, rtl::SLAB_FLOAT_LATENCY)
+        .unwrap_or_else(|e| panic!("{e}"));
+}
