@@ -335,7 +335,7 @@ macro_rules! with_bundle_float {
             }
             _ => Err(format!(
                 "no BundleFloat instance for float format {}: instantiated are e8m23, e8m7, e5m10 \
-                 (add a type alias in rtl/src/lib.rs for another)",
+                 (add a type alias in rtl/src/bundle/registry.rs for another)",
                 f.name()
             )),
         }

@@ -64,7 +64,7 @@ macro_rules! with_plane_float {
             }
             _ => Err(format!(
                 "no PlaneFloat instance for {} with {k} planes: instantiated are e5m10, e8m7, e8m23 \
-                 with 1, 2, 4 planes (add a type alias in rtl/src/lib.rs for another)",
+                 with 1, 2, 4 planes (add a type alias in rtl/src/plane/registry.rs for another)",
                 f.name()
             )),
         }
