@@ -34,13 +34,13 @@
 //! within an ulp of a plane, rays aimed at box edges with normalised directions) and frozen as literals.
 
 use crate::bundle::edge::{decide_exact, decide_ref, Bundle};
-use crate::slab::check::{judge, Verdict};
 use crate::error::Error;
 use crate::exact::{slab_exact, ExactHit};
 use crate::format::fixed::{FixFormat, GridMap};
 use crate::format::float::FloatFormat;
 use crate::geom::{Aabb, Ray};
 use crate::plane::clip::{clip_exact, clip_exact_world, clip_ref, region_points, Plane, PlaneNode};
+use crate::slab::check::{judge, Verdict};
 use crate::slab::reference::slab_textbook;
 use glam::DVec3;
 

@@ -4,19 +4,19 @@
 //! (run with `--nocapture`).
 
 use glam::DVec3;
+use golden::bundle::check::{judge, oracle, truth, Tally};
 use golden::bundle::edge::{
     conditions_hold, decide_exact, exact_box, exact_bundle, ray_hits_exact, ray_hits_ref, Bundle,
     BundleOf, ExactArith, Test,
 };
-use golden::bundle::check::{judge, oracle, truth, Tally};
 use golden::bundle::fix::{self as bundle_fix, BundleFixFormat};
 use golden::bundle::float as bundle_float;
 use golden::bundle::gen::{BundleCase, BundleGen};
 use golden::exact::slab_exact;
 use golden::format::fixed::GridMap;
 use golden::format::float::FloatFormat;
-use golden::slab::gen::{GenKind, SlabGen};
 use golden::geom::{Aabb, Ray};
+use golden::slab::gen::{GenKind, SlabGen};
 use golden::slab::reference::slab_ref;
 use std::time::Instant;
 

@@ -1,13 +1,13 @@
 //! Randomised conservativeness of the two cull-plane models against the exact clip, on fitted planes.
 
 use glam::DVec3;
-use golden::slab::check::{judge, Verdict};
 use golden::format::fixed::{FixFormat, GridMap};
 use golden::format::float::FloatFormat;
 use golden::geom::{Aabb, Ray};
 use golden::plane::clip::clip_exact;
 use golden::plane::fix::{self as plane_fix, CullFixFormat, FixNode, NodeFixRay};
 use golden::plane::float::{self as plane_float, CullFloatFormat, FloatNode, NodeFloatRay};
+use golden::slab::check::{judge, Verdict};
 use rand::{Rng, SeedableRng};
 use rand_pcg::Pcg64;
 

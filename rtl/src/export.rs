@@ -181,7 +181,8 @@ pub fn plane_verilog() -> Vec<(String, String, usize)> {
     for (f, k) in crate::plane::float_export::PLANE_FLOAT_CONFIGS {
         if k == 1 {
             let m = crate::plane::float_export::plane_float_module(&CullFloatFormat::over(f), k);
-            let text = crate::plane::float_export::plane_float_verilog(&f, k).expect("instantiated");
+            let text =
+                crate::plane::float_export::plane_float_verilog(&f, k).expect("instantiated");
             v.push((m, text, crate::PLANE_FLOAT_LATENCY));
         }
     }

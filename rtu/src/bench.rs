@@ -4,9 +4,9 @@
 
 use golden::format::fixed::FixFormat;
 use golden::format::float::FloatFormat;
-use golden::slab::gen::GenKind;
 use golden::slab::fix::slab_fix;
 use golden::slab::float as slab_float;
+use golden::slab::gen::GenKind;
 use rtl::slab::fix::SlabFixIo;
 use std::fmt::Write as _;
 use std::hint::black_box;

@@ -7,10 +7,10 @@ use crate::list;
 use golden::bundle::build::{build, tiles, BuildParams, Built, SplitMetric};
 use golden::bundle::fix::BundleFixFormat;
 use golden::bundle::traverse::{traverse_all, BundlePath, BundleStats, ExactHits, TravOptions};
-use golden::scene::bvh::Bvh;
 use golden::format::fixed::{FixFormat, GridMap};
 use golden::format::float::FloatFormat;
 use golden::geom::Ray;
+use golden::scene::bvh::Bvh;
 use golden::scene::traverse::{trace, AabbOnly};
 use indicatif::{ProgressBar, ProgressStyle};
 use std::fmt::Write as _;
@@ -182,7 +182,8 @@ pub fn scenes(a: &Args, out: &Path) -> Result<String, String> {
     );
     let mut recs: Vec<Rec> = vec![];
     for name in &names {
-        let sc = golden::scene::tri_scene::by_name(name, a.seed, None).map_err(|e| e.to_string())?;
+        let sc =
+            golden::scene::tri_scene::by_name(name, a.seed, None).map_err(|e| e.to_string())?;
         let bvh = Bvh::build(&sc.tris, 4).map_err(|e| e.to_string())?;
         let prim = golden::scene::tri_scene::primary_rays(&sc, a.width, a.height);
         let (hits, _) = trace(&bvh, &sc.tris, &prim, &mut AabbOnly::new(&bvh));
@@ -466,8 +467,9 @@ pub fn campaign(a: &CampaignArgs, out: &Path) -> Result<String, String> {
                         let tr = truth(&c);
                         let or = (i % a.oracle_every == 0).then(|| oracle(&c));
                         for (k, (bf, map)) in fixed.iter().zip(maps).enumerate() {
-                            let got = golden::bundle::fix::decide_fix(bf, map, &c.bundle, &c.bounds)
-                                .map_err(|e| format!("fixed {}: {e}", bf.name()))?;
+                            let got =
+                                golden::bundle::fix::decide_fix(bf, map, &c.bundle, &c.bounds)
+                                    .map_err(|e| format!("fixed {}: {e}", bf.name()))?;
                             sh.tallies[k].add(&c, &tr, or, got);
                         }
                         for (k, f) in floats.iter().enumerate() {

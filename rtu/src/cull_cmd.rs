@@ -1,11 +1,11 @@
 //! `rtu cull-campaign` and `rtu cull-scenes`: the cull-plane tester's conservativeness campaign against
 //! the exact clip and the exact triangle test, and the triangle tests it saves on scenes.
 
-use golden::scene::bvh::Bvh;
 use golden::format::fixed::{FixFormat, GridMap};
 use golden::geom::Ray;
 use golden::plane::fix::CullFixFormat;
 use golden::plane::float::CullFloatFormat;
+use golden::scene::bvh::Bvh;
 use golden::scene::sweep::{FixTester, FloatTester};
 use golden::scene::traverse::{trace, AabbOnly, NodeTester};
 use indicatif::{ProgressBar, ProgressStyle};
@@ -184,7 +184,10 @@ pub fn scenes(
         let mut plane_sets = vec![];
         for &k in ks {
             for (nm, gen) in [
-                (Normals::Own, golden::plane::generate::generate as fn(_, _, _) -> _),
+                (
+                    Normals::Own,
+                    golden::plane::generate::generate as fn(_, _, _) -> _,
+                ),
                 (Normals::Shared, golden::plane::generate::generate_shared),
             ] {
                 plane_sets.push((k, nm, gen(&bvh, &sc.tris, k).map_err(|e| e.to_string())?));

@@ -2,9 +2,9 @@
 //! preset width, judged against the exact oracle; a summary table, Verilog, a VCD and a report.
 
 use crate::scene::Scene;
-use golden::slab::check::Verdict;
 use golden::exact::{slab_exact, ExactHit, Ext};
 use golden::format::fixed::{FixFormat, GridMap};
+use golden::slab::check::Verdict;
 use golden::slab::float::{quantize_box, quantize_ray};
 use golden::slab::reference::slab_ref;
 use std::fmt::Write as _;

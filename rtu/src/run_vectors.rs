@@ -3,10 +3,10 @@
 use glam::DVec3;
 use golden::format::fixed::{FixFormat, GridMap};
 use golden::format::float::FloatFormat;
-use golden::slab::gen::{GenKind, SlabGen};
 use golden::plane::fix::CullFixFormat;
 use golden::plane::float::CullFloatFormat;
 use golden::slab::float::{quantize_box, quantize_ray};
+use golden::slab::gen::{GenKind, SlabGen};
 use golden::slab::vectors::{
     csv_vector_header, read_vectors, write_header, write_result, write_vector, VecFormat, Vector,
     MAX_VECTOR_PLANES,
@@ -15,8 +15,8 @@ use std::io::{BufRead, BufReader, BufWriter, Read, Write};
 use std::path::Path;
 use std::sync::{Arc, Mutex};
 use tb::engine::{run_cull_fix, run_cull_float, run_fix, run_float, Engine};
-use tb::plane::float::{float_vector, CullFloatCtx};
 use tb::plane::fix::{fix_vector, CullFixCtx};
+use tb::plane::float::{float_vector, CullFloatCtx};
 use tb::slab::ports::SlabCtx;
 
 pub(crate) fn parse_bounds(s: &str) -> Result<(DVec3, DVec3), String> {

@@ -10,18 +10,18 @@ use crate::list;
 use golden::bundle::build::{build, tiles, BuildParams, Built};
 use golden::bundle::fix::BundleFixFormat;
 use golden::bundle::traverse::BundlePath;
-use golden::scene::bvh::Bvh;
 use golden::format::fixed::{FixFormat, GridMap};
 use golden::format::float::FloatFormat;
 use golden::geom::Ray;
 use golden::plane::clip::Plane;
 use golden::plane::fix::CullFixFormat;
 use golden::plane::float::CullFloatFormat;
-use golden::scene::tri_scene::TriScene;
+use golden::scene::bvh::Bvh;
 use golden::scene::sweep::{
     traverse, ExactTester, FixTester, FloatTester, Machine, RaySet, SceneStats,
 };
 use golden::scene::traverse::{trace, AabbOnly, NodeTester};
+use golden::scene::tri_scene::TriScene;
 use std::collections::HashMap;
 use std::fmt::Write as _;
 use std::path::{Path, PathBuf};
@@ -344,7 +344,8 @@ impl<'a> Prepared<'a> {
         let bvh = Bvh::build(&sc.tris, 4).map_err(|e| e.to_string())?;
         let prim = golden::scene::tri_scene::primary_rays(sc, w, h);
         let (hits, _) = trace(&bvh, &sc.tris, &prim, &mut AabbOnly::new(&bvh));
-        let sec = golden::scene::tri_scene::secondary_rays_offset(sc, &prim, &hits, seed + 1, offset);
+        let sec =
+            golden::scene::tri_scene::secondary_rays_offset(sc, &prim, &hits, seed + 1, offset);
         let b = sc.bounds();
         Ok(Prepared {
             sc,

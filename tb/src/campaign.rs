@@ -3,8 +3,8 @@
 
 use crate::slab::ports::SlabVec;
 use glam::DVec3;
-use golden::slab::check::{check_fix, Verdict};
 use golden::format::fixed::{FixBox, FixFormat, FixRay, GridMap};
+use golden::slab::check::{check_fix, Verdict};
 use golden::slab::gen::{GenKind, SlabGen};
 use rand::{Rng, SeedableRng};
 use rand_pcg::Pcg64;

@@ -3,8 +3,8 @@
 //! Verilog in Verilator. Results come back in input order.
 
 use crate::dut::PipelinedDut;
-use crate::plane::float::CullFloatCtx;
 use crate::plane::fix::CullFixCtx;
+use crate::plane::float::CullFloatCtx;
 use crate::rtl_sim::SlabRtl;
 use crate::slab::ports::{in_word, SlabCtx};
 use golden::format::fixed::FixFormat;
@@ -57,7 +57,11 @@ pub fn run_fix<K, It, F>(
 where
     K: Send + 'static,
     It: Iterator<Item = Keyed<K, FixFormat>> + Send + 'static,
-    F: FnMut(K, &golden::format::fixed::FixRay, golden::slab::fix::SlabFixOut) -> Result<(), String>,
+    F: FnMut(
+        K,
+        &golden::format::fixed::FixRay,
+        golden::slab::fix::SlabFixOut,
+    ) -> Result<(), String>,
 {
     if engine == Engine::Model {
         return run_model(fmt, tests, vcd, sink);

@@ -10,9 +10,9 @@
 
 use golden::format::fixed::{FixFormat, GRID_LADDER};
 use golden::format::float::FloatFormat;
-use golden::slab::gen::GenKind;
 use golden::slab::fix::slab_fix;
 use golden::slab::float::slab_float;
+use golden::slab::gen::GenKind;
 use proptest::test_runner::{Config, TestCaseError, TestRunner};
 use rtl::export::{
     slab_fix_module, slab_fix_verilog_ladder, slab_float_module, slab_float_verilog_ladder,

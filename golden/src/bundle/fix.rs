@@ -30,7 +30,9 @@
 //! `t * u` with the `+inf` code is `+inf` for `u > 0` and 0 for `u = 0` (the origin must then lie in the
 //! slab), as in the proof's convention.
 
-use crate::bundle::edge::{conditions_hold, BoundArith, BoxArrays, BoxPair, Bundle, BundleOf, Test};
+use crate::bundle::edge::{
+    conditions_hold, BoundArith, BoxArrays, BoxPair, Bundle, BundleOf, Test,
+};
 use crate::error::Error;
 use crate::exact::{dyadic, Ext};
 use crate::format::fixed::{ceil_pow2, dir_scale_exp, floor_pow2, FixBox, FixFormat, GridMap};

@@ -26,17 +26,17 @@
 //! with other jobs meanwhile is not built. Testing the rays one by one costs `|A|` cycles of a single-ray
 //! tester (the yardstick) or `ceil(|A| / 2)` on the pair; [`BundleStats`] keeps both.
 
-use crate::bundle::edge::{decide_exact, Bundle};
 use crate::bundle::build::{Built, SplitMetric};
 use crate::bundle::check::slab_hit;
+use crate::bundle::edge::{decide_exact, Bundle};
 use crate::bundle::fix::{decide_fix, BundleFixFormat};
 use crate::bundle::float::decide_float;
 use crate::bundle::split::split_cycles;
-use crate::scene::bvh::{Bvh, NodeKind};
 use crate::error::Error;
 use crate::format::fixed::GridMap;
 use crate::format::float::FloatFormat;
 use crate::geom::{Aabb, Ray};
+use crate::scene::bvh::{Bvh, NodeKind};
 
 /// The datapath a traversal runs the pair on.
 #[derive(Clone, Debug)]

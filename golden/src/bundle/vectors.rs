@@ -16,8 +16,8 @@
 //! tested two per clock), `"hits"` (per ray: may hit the box; never false for a ray that hits) and
 //! `"pair_cycles"`.
 
-use crate::bundle::edge::Bundle;
 use crate::bundle::build::MAX_BUNDLE_RAYS;
+use crate::bundle::edge::Bundle;
 use crate::error::Error;
 use crate::geom::{Aabb, Ray};
 use crate::slab::vectors::{json_num, json_object, line_err, num_text};

@@ -350,7 +350,8 @@ mod tests {
     #[test]
     fn node_bytes_with_own_and_shared_normals() {
         // b16 cull format: G = 16, N = 8, W = 28. Box 96 bits; a plane 24 + 28 bits.
-        let l = crate::plane::fix::CullFixFormat::over(crate::format::fixed::FixFormat::b16()).layout();
+        let l =
+            crate::plane::fix::CullFixFormat::over(crate::format::fixed::FixFormat::b16()).layout();
         assert_eq!((l.box_bits, l.normal_bits, l.offset_bits), (96, 24, 28));
         assert_eq!(l.own_bytes(0), 12);
         assert_eq!(l.own_bytes(4), 38); // 304 bits
@@ -358,7 +359,8 @@ mod tests {
         assert_eq!(l.shared_bytes(4, 2), 32.0);
         assert_eq!(l.shared_bytes(1, 2), 16.0 + 1.5); // 124 bits round up to 16 bytes
                                                       // fp16: everything 16 bits; K = 2 own: 6 + 8 values, 28 bytes; shared by 4: 16 + 12 / 4.
-        let f = crate::plane::float::CullFloatFormat::over(crate::format::float::FloatFormat::FP16).layout();
+        let f = crate::plane::float::CullFloatFormat::over(crate::format::float::FloatFormat::FP16)
+            .layout();
         assert_eq!(f.own_bytes(2), 28);
         assert_eq!(f.shared_bytes(2, 4), 19.0);
     }

@@ -48,7 +48,9 @@
 
 use crate::error::Error;
 use crate::exact::{dyadic, Ext};
-use crate::format::fixed::{ceil_pow2, dir_scale_exp, floor_pow2, FixBox, FixFormat, FixRay, GridMap};
+use crate::format::fixed::{
+    ceil_pow2, dir_scale_exp, floor_pow2, FixBox, FixFormat, FixRay, GridMap,
+};
 use crate::geom::Ray;
 use crate::plane::clip::ExactPlane;
 use crate::slab::fix::SlabFixOut;

@@ -35,10 +35,10 @@
 //! Ties in scores go to the lower direction index, so generation is deterministic. Output: one
 //! `Vec<Plane>` per BVH node, indexed like [`crate::scene::bvh::Bvh::nodes`] (empty: no planes).
 
-use crate::scene::bvh::{Bvh, NodeKind};
 use crate::error::Error;
 use crate::geom::Aabb;
 use crate::plane::clip::Plane;
+use crate::scene::bvh::{Bvh, NodeKind};
 use crate::scene::tri::{round_up, Dyadic, Triangle};
 use glam::DVec3;
 use std::cmp::Ordering;
@@ -555,7 +555,10 @@ mod tests {
             assert!(n > bvh.nodes.len() / 2, "only {n} planes");
         }
         // Scenes with exact ties and flat boxes (axis-aligned walls) and grass.
-        for s in [crate::scene::tri_scene::room(1, 30), crate::scene::tri_scene::grass(1, 300)] {
+        for s in [
+            crate::scene::tri_scene::room(1, 30),
+            crate::scene::tri_scene::grass(1, 300),
+        ] {
             let bvh = Bvh::build(&s.tris, 4).unwrap();
             let planes = generate(&bvh, &s.tris, 4).unwrap();
             check_all_vertices_inside(&bvh, &s.tris, &planes, true);

@@ -31,16 +31,16 @@
 //! returned interval on true box hits (how far it reaches beyond the f64 reference's slab interval, in
 //! world units; planes may make it negative, counted as zero).
 
-use crate::bundle::edge::Bundle;
 use crate::bundle::build::Built;
+use crate::bundle::edge::Bundle;
 use crate::bundle::traverse::{BundlePath, ExactHits};
-use crate::scene::bvh::{Bvh, NodeKind};
 use crate::error::Error;
 use crate::format::fixed::GridMap;
 use crate::geom::Ray;
 use crate::plane::clip::{clip_exact, ExactPlane, Plane};
 use crate::plane::fix::{self as plane_fix, CullFixFormat, FixNode, NodeFixRay};
 use crate::plane::float::{self as plane_float, CullFloatFormat, FloatNode, NodeFloatRay};
+use crate::scene::bvh::{Bvh, NodeKind};
 use crate::scene::traverse::{Hit, NodeTester};
 use crate::scene::tri::{tri_hit, Triangle};
 use std::collections::HashMap;

@@ -15,13 +15,13 @@
 //! the f64 reference of the cull-plane tester, rounds to nearest and is *not* guaranteed conservative:
 //! measuring how often it differs is one of the things this module is for.
 
-use crate::scene::bvh::{Bvh, NodeKind};
 use crate::error::Error;
 use crate::exact::{slab_exact, Ext};
 use crate::geom::{Aabb, Ray};
 use crate::plane::clip::{clip_ref, Plane, PlaneNode};
-use crate::scene::tri_scene::TriScene;
+use crate::scene::bvh::{Bvh, NodeKind};
 use crate::scene::tri::{round_down, round_up, tri_hit, Triangle};
+use crate::scene::tri_scene::TriScene;
 use num_rational::BigRational;
 
 /// A node test as the traversal sees it.
@@ -342,8 +342,8 @@ pub fn measure<T: NodeTester>(
 mod tests {
     use super::*;
     use crate::plane::generate::generate;
-    use crate::scene::tri_scene::{self as scene, primary_rays, secondary_rays};
     use crate::scene::tri::{random_point, random_triangle, random_unit, ray_at_triangle};
+    use crate::scene::tri_scene::{self as scene, primary_rays, secondary_rays};
     use glam::DVec3;
     use rand::{Rng, SeedableRng};
     use rand_pcg::Pcg64;

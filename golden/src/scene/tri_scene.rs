@@ -276,7 +276,12 @@ pub fn soup(seed: u64, n: usize) -> TriScene {
     let mut rng = Pcg64::seed_from_u64(seed);
     let tris = (0..n)
         .map(|_| {
-            crate::scene::tri::random_triangle(&mut rng, DVec3::splat(-10.0), DVec3::splat(10.0), 1.5)
+            crate::scene::tri::random_triangle(
+                &mut rng,
+                DVec3::splat(-10.0),
+                DVec3::splat(10.0),
+                1.5,
+            )
         })
         .collect();
     TriScene {

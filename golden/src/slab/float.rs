@@ -258,7 +258,11 @@ pub fn t_ext(f: &FloatFormat, x: u32) -> Ext {
 }
 
 /// Judges a float result against the exact oracle (see [`crate::slab::check::judge`]).
-pub fn judge_float(f: &FloatFormat, out: &SlabFloatOut, exact: &ExactHit) -> crate::slab::check::Verdict {
+pub fn judge_float(
+    f: &FloatFormat,
+    out: &SlabFloatOut,
+    exact: &ExactHit,
+) -> crate::slab::check::Verdict {
     crate::slab::check::judge(exact, out.hit, || {
         if f.is_nan(out.t_entry) || f.is_nan(out.t_exit) {
             None

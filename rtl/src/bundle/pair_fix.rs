@@ -42,8 +42,8 @@
 //! AND (they are equal), so that no child output is left unused.
 
 use crate::bundle::edge_fix::{BundleTest, BUNDLE_TEST_LATENCY};
-use crate::slab::fix::{code, TAG_BITS};
 use crate::io::SlabIo;
+use crate::slab::fix::{code, TAG_BITS};
 use golden::bundle::edge::BoxPair;
 use golden::bundle::fix::{all_hit_fix, all_miss_fix, BundleFixFormat, FixBundle};
 use golden::format::fixed::FixBox;

@@ -26,10 +26,10 @@
 //! 5. `_q5`: the last level merged with the slab tester's result (out at clock 4).
 //! 6. `_q6`: `hit = slab hit && no parallel cull && t_entry <= t_exit`; these registers drive the outputs.
 
+use crate::io::SlabIo;
 use crate::plane::bound::PlaneBound;
 use crate::plane::sums::PlaneSums;
 use crate::slab::fix::{code, sext, SlabFix, TAG_BITS};
-use crate::io::SlabIo;
 use golden::plane::fix::{CullFixFormat, FixNode, NodeFixRay, PlaneFixOut, MAX_PLANES};
 use rust_hdl::prelude::*;
 

@@ -37,14 +37,14 @@
 //!    four pairwise `<=` of {slab entry, plane entry} against {slab exit, plane exit} (one [`FracCmp`],
 //!    two `CodeFracCmp`s and a t-code comparison), so the merge's result is not waited for.
 
-use crate::plane::quot_code_cmp::{code_frac_cmp, CodeFracCmp};
 use crate::delay::Delay3;
-use crate::plane::quot_cmp::FracCmp;
-use crate::plane::quot_tree::{frac_tree, FracTree};
+use crate::io::SlabIo;
 use crate::plane::quot_bound::{frac_effect, PlaneFracBound};
+use crate::plane::quot_cmp::FracCmp;
+use crate::plane::quot_code_cmp::{code_frac_cmp, CodeFracCmp};
+use crate::plane::quot_tree::{frac_tree, FracTree};
 use crate::plane::sums::PlaneSums;
 use crate::slab::fix::{code, sext, SlabFix, TAG_BITS};
-use crate::io::SlabIo;
 use golden::exact::{dyadic, Ext};
 use golden::plane::fix::{plane_sums, CullFixFormat, FixNode, NodeFixRay, MAX_PLANES};
 use golden::slab::fix::slab_fix;

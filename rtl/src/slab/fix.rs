@@ -39,9 +39,9 @@
 //! Signed comparisons are unsigned comparisons of the sign-flipped codes: rust-hdl's `Signed` compares
 //! through big integers in simulation and emits unsized `$signed` casts in Verilog.
 
+use crate::io::SlabIo;
 use crate::slab::axis_dist::AxisDist;
 use crate::slab::mul_round::MulRound;
-use crate::io::SlabIo;
 use golden::format::fixed::{FixBox, FixFormat, FixRay};
 use golden::slab::fix::SlabFixOut;
 use rust_hdl::prelude::*;

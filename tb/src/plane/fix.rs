@@ -4,16 +4,17 @@
 
 use crate::slab::ports::SlabCtx;
 use glam::DVec3;
-use golden::slab::check::{judge, Verdict};
-use golden::plane::gen::{CullCase, CullGen};
 use golden::error::Error;
 use golden::exact::ExactHit;
 use golden::format::fixed::{FixFormat, GridMap};
 use golden::plane::clip::{clip_exact, ExactPlane};
 use golden::plane::fix::{
-    self as plane_fix, cull_fix_fractions, node_fix, CullFixFormat, FixNode, FixPlane, NodeFixRay, PlaneFixOut,
+    self as plane_fix, cull_fix_fractions, node_fix, CullFixFormat, FixNode, FixPlane, NodeFixRay,
+    PlaneFixOut,
 };
+use golden::plane::gen::{CullCase, CullGen};
 use golden::scene::tri::{tri_hit, Triangle};
+use golden::slab::check::{judge, Verdict};
 use rand::{Rng, SeedableRng};
 use rand_pcg::Pcg64;
 use rtl::slab::fix::{code, sext};

@@ -5,11 +5,11 @@
 
 use crate::plane::fix::{float_case, CULL_R};
 use crate::slab::ports::SlabCtx;
-use golden::plane::gen::CullGen;
 use golden::exact::ExactHit;
 use golden::plane::float::{
     node_float, out_interval, CullFloatFormat, FloatNode, FloatPlane, NodeFloatRay,
 };
+use golden::plane::gen::CullGen;
 use golden::slab::float::SlabFloatOut;
 use rand::Rng;
 use rand_pcg::Pcg64;

@@ -10,10 +10,10 @@ use golden::bundle::fix::{all_hit_fix, BundleFixFormat};
 use golden::bundle::split::{split_with, SplitResult};
 use rtl::bundle::split::{bundle_split_module, split_clocks, BundleSplitIo, SplitJob};
 use std::time::Instant;
+use tb::bundle::pair_fix::quantised_case;
 use tb::bundle::split::{
     directed, run_split, split_model, split_xsim, RayStore, SplitRtl, SplitStats, SplitStim,
 };
-use tb::bundle::pair_fix::quantised_case;
 use tb::campaign::{campaign_bounds, campaign_map};
 use tb::vcd_read::read_trace;
 

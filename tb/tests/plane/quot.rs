@@ -117,7 +117,12 @@ impl SlabCtx for FracCtx {
         let w = |f: &Frac| frac_value(self.cf(), f).to_f64() * 2f64.powi(r.ray.t_exp);
         (o.hit, w(&o.t_entry), w(&o.t_exit))
     }
-    fn judge(&self, r: &NodeFixRay, o: &PlaneFracOut, exact: &ExactHit) -> golden::slab::check::Verdict {
+    fn judge(
+        &self,
+        r: &NodeFixRay,
+        o: &PlaneFracOut,
+        exact: &ExactHit,
+    ) -> golden::slab::check::Verdict {
         golden::slab::check::judge(exact, o.hit, || self.interval(r, o))
     }
 }

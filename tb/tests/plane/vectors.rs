@@ -3,19 +3,19 @@
 //! outward to the part of the box they keep), are judged against the exact clip by the *world* planes —
 //! the contract the user sees — and the model, rust-hdl and Verilator engines give the same results.
 
-use golden::slab::check::{judge, Verdict};
-use golden::plane::gen::CullGen;
 use golden::format::fixed::{FixFormat, GridMap};
 use golden::format::float::FloatFormat;
 use golden::plane::clip::{clip_exact, ExactPlane, Plane};
 use golden::plane::fix::CullFixFormat;
 use golden::plane::float::{out_interval, CullFloatFormat};
+use golden::plane::gen::CullGen;
+use golden::slab::check::{judge, Verdict};
 use golden::slab::vectors::{read_vectors, write_vector, VecFormat, Vector};
 use rand::{Rng, SeedableRng};
 use rand_pcg::Pcg64;
 use tb::engine::{run_cull_fix, run_cull_float, Engine};
-use tb::plane::float::{float_vector, CullFloatCtx};
 use tb::plane::fix::{cull_map, fix_vector, CullFixCtx};
+use tb::plane::float::{float_vector, CullFloatCtx};
 use tb::slab::ports::SlabCtx;
 
 /// `n` world vectors with `k` planes each, through a JSON-lines file and back: half the planes fitted

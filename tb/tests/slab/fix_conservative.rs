@@ -53,8 +53,8 @@ fn b16_adversarial() {
 /// The check can fail: a model that shrinks the exit by one code is caught as non-enclosing.
 #[test]
 fn a_tightened_interval_is_caught() {
-    use golden::slab::check::{judge_fix, Verdict};
     use golden::exact::slab_exact;
+    use golden::slab::check::{judge_fix, Verdict};
     use golden::slab::fix::slab_fix;
     let fmt = FixFormat::b12();
     let map = tb::campaign::campaign_map(fmt);

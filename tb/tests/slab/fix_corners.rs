@@ -4,9 +4,9 @@
 //! Where the f64 textbook method goes wrong, that is asserted too.
 
 use glam::DVec3;
-use golden::slab::check::{judge_fix, Verdict};
 use golden::exact::slab_exact;
 use golden::format::fixed::{FixFormat, GridMap};
+use golden::slab::check::{judge_fix, Verdict};
 use golden::slab::fix::slab_fix;
 use golden::slab::reference::{slab_ref, slab_textbook};
 use golden::stability::{slab_cases, SlabCase};

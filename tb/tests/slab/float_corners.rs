@@ -4,9 +4,9 @@
 //! the conservative float datapath must be right — no false miss, enclosing interval — in every format.
 //! The grazing cases were found by searching rays aimed at corners of the unit box.
 
-use golden::slab::check::Verdict;
 use golden::exact::slab_exact;
 use golden::format::float::{FloatFormat, Rounding};
+use golden::slab::check::Verdict;
 use golden::slab::float::{
     judge_float, quantize_box, quantize_ray, slab_float, slab_float_textbook,
 };

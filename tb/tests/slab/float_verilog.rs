@@ -3,8 +3,8 @@
 //! vectors per format.
 
 use golden::format::float::FloatFormat;
-use golden::slab::gen::GenKind;
 use golden::slab::float::{quantize_box, quantize_ray};
+use golden::slab::gen::GenKind;
 use rtl::export::{slab_float_module, slab_float_verilog};
 use rtl::slab::float::SlabFloatIo;
 use tb::slab::ports::xsim;

@@ -4,8 +4,8 @@
 //! by bubbles and for a back-to-back burst.
 
 use golden::format::fixed::FixFormat;
-use golden::slab::gen::GenKind;
 use golden::slab::fix::slab_fix;
+use golden::slab::gen::GenKind;
 use tb::campaign::slab_vectors;
 use tb::dut::run_checked;
 use tb::rtl_sim::SlabFixRtl;
