@@ -24,6 +24,7 @@ pub mod plane;
 pub mod scene;
 pub mod slab;
 pub mod stability;
+pub mod text;
 
 pub use error::Error;
 pub use geom::{Aabb, Ray};

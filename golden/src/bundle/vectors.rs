@@ -20,7 +20,7 @@ use crate::bundle::build::MAX_BUNDLE_RAYS;
 use crate::bundle::edge::Bundle;
 use crate::error::Error;
 use crate::geom::{Aabb, Ray};
-use crate::slab::vectors::{json_num, json_object, line_err, num_text};
+use crate::slab::vectors::{json_num, json_object, line_err, num_text, read_line};
 use glam::DVec3;
 use serde_json::{Map, Value};
 use std::io::{BufRead, Write};
@@ -49,23 +49,14 @@ fn vec3(
         .ok_or_else(|| line_err(src, line, name, "expected an array of three numbers"))?;
     let mut out = [0.0; 3];
     for (a, x) in arr.iter().enumerate() {
-        out[a] = json_num(x).ok_or_else(|| {
-            line_err(
-                src,
-                line,
-                &format!("{name}[{a}]"),
-                format!("`{x}` is not a number"),
-            )
-        })?;
+        out[a] = json_num(x).map_err(|why| line_err(src, line, &format!("{name}[{a}]"), why))?;
     }
     Ok(Some(DVec3::from(out)))
 }
 
 fn num(src: &str, line: usize, obj: &Map<String, Value>, name: &str) -> Result<Option<f64>, Error> {
     obj.get(name)
-        .map(|x| {
-            json_num(x).ok_or_else(|| line_err(src, line, name, format!("`{x}` is not a number")))
-        })
+        .map(|x| json_num(x).map_err(|why| line_err(src, line, name, why)))
         .transpose()
 }
 
@@ -90,12 +81,7 @@ fn parse_line(src: &str, line: usize, text: &str, index: u64) -> Result<BundleVe
         "tag", "rays", "box_min", "box_max", "o_lo", "o_hi", "d_lo", "d_hi", "t_lo", "t_hi",
     ];
     if let Some(k) = obj.keys().find(|k| !KEYS.contains(&k.as_str())) {
-        return Err(line_err(
-            src,
-            line,
-            k,
-            format!("unknown field (expected {})", KEYS.join(", ")),
-        ));
+        return Err(line_err(src, line, k, crate::text::unknown_field(k, &KEYS)));
     }
     if !obj.contains_key("o_lo") {
         if let Some(k) = KEYS[5..].iter().find(|k| obj.contains_key(**k)) {
@@ -146,7 +132,7 @@ fn parse_line(src: &str, line: usize, text: &str, index: u64) -> Result<BundleVe
                     src,
                     line,
                     &format!("{field}.{k}"),
-                    "unknown field (expected origin, dir, t_max)",
+                    crate::text::unknown_field(k, &["origin", "dir", "t_max"]),
                 ));
             }
             let get = |name: &str| -> Result<DVec3, Error> {
@@ -182,11 +168,22 @@ fn parse_line(src: &str, line: usize, text: &str, index: u64) -> Result<BundleVe
         (None, false) => None,
         (Some(o_lo), _) => {
             let t_hi = num(src, line, obj, "t_hi")?.unwrap_or(f64::INFINITY);
+            let bound = |name: &str| -> Result<DVec3, Error> {
+                vec3(src, line, obj, name)?.ok_or_else(|| {
+                    line_err(
+                        src,
+                        line,
+                        name,
+                        "missing: a bundle's bounds are o_lo, o_hi, d_lo and d_hi, all four \
+                         (t_lo and t_hi are optional); or give only its rays",
+                    )
+                })
+            };
             Some(Bundle {
                 o_lo: o_lo.into(),
-                o_hi: need("o_hi")?.into(),
-                d_lo: need("d_lo")?.into(),
-                d_hi: need("d_hi")?.into(),
+                o_hi: bound("o_hi")?.into(),
+                d_lo: bound("d_lo")?.into(),
+                d_hi: bound("d_hi")?.into(),
                 t_lo: num(src, line, obj, "t_lo")?.unwrap_or(t_hi),
                 t_hi,
             })
@@ -220,19 +217,27 @@ pub fn read_bundles<'a, R: BufRead + Send + 'a>(
     reader: R,
     src: impl Into<String>,
 ) -> Box<dyn Iterator<Item = Result<BundleVector, Error>> + Send + 'a> {
+    Box::new(read_numbered_bundles(reader, src).map(|r| r.map(|(_, v)| v)))
+}
+
+/// [`read_bundles`] with each bundle's line number (1-based), for errors found after reading.
+pub fn read_numbered_bundles<'a, R: BufRead + Send + 'a>(
+    reader: R,
+    src: impl Into<String>,
+) -> Box<dyn Iterator<Item = Result<(usize, BundleVector), Error>> + Send + 'a> {
     let src: String = src.into();
     let mut index = 0u64;
     Box::new(reader.lines().enumerate().filter_map(move |(n, l)| {
         let line = n + 1;
-        let text = match l {
+        let text = match read_line(&src, line, l) {
             Ok(t) => t,
-            Err(e) => return Some(Err(Error::Io(format!("{src}:{line}: {e}")))),
+            Err(e) => return Some(Err(e)),
         };
         let t = text.trim();
         if t.is_empty() || t.starts_with('#') {
             return None;
         }
-        let r = parse_line(&src, line, t, index);
+        let r = parse_line(&src, line, t, index).map(|v| (line, v));
         index += 1;
         Some(r)
     }))
@@ -370,6 +375,8 @@ mod tests {
             ("{\"rays\":[{\"origin\":[0,0,0],\"dir\":[1,0,0]}],\"t_mx\":1,\"box_min\":[0,0,0],\"box_max\":[1,1,1]}", "t_mx"),
             ("{\"rays\":[{\"origin\":[0,0,0],\"dir\":[1,0,0],\"tmax\":1}],\"box_min\":[0,0,0],\"box_max\":[1,1,1]}", "rays[0].tmax"),
             ("{\"rays\":[{\"origin\":[0,0,0],\"dir\":[1,0,0]}],\"t_hi\":1,\"box_min\":[0,0,0],\"box_max\":[1,1,1]}", "t_hi"),
+            ("{\"rays\":[{\"origin\":[0,0,0],\"dir\":[1,1e-400,0]}],\"box_min\":[0,0,0],\"box_max\":[1,1,1]}", "dir`: `1e-400` underflows"),
+            ("{\"rays\":[{\"origin\":[0,0,0],\"dir\":[1,0,0]}],\"o_lo\":[0,0,0],\"box_min\":[0,0,0],\"box_max\":[1,1,1]}", "o_hi`: missing: a bundle's bounds are o_lo, o_hi, d_lo and d_hi"),
         ];
         for (text, field) in cases {
             let r = read(&format!("# comment\n\n{text}\n"));
@@ -377,6 +384,14 @@ mod tests {
             assert!(e.starts_with("in.jsonl:3:"), "{e}");
             assert!(e.contains(&format!("field `{field}")), "{text}: {e}");
         }
+    }
+
+    #[test]
+    fn a_byte_order_mark_is_read_past() {
+        let line = "{\"rays\":[{\"origin\":[0,0,-5],\"dir\":[0,0,1]}],\"box_min\":[0,0,0],\"box_max\":[1,1,1]}\n";
+        let plain = read(line);
+        assert!(plain[0].is_ok());
+        assert_eq!(read(&format!("\u{feff}{line}")), plain);
     }
 
     #[test]

@@ -20,8 +20,12 @@
 //! OBJ input ([`load_obj`], [`parse_obj`]): the Wavefront OBJ format (Wavefront Technologies, *Advanced
 //! Visualizer* manual, Appendix B1, "Object Files"): `v x y z [w]` vertices and `f` faces whose vertex
 //! references are `i`, `i/t`, `i//n` or `i/t/n`, 1-based or negative (relative to the vertices read so
-//! far). Faces with more than three vertices are split into a fan. Every other statement is ignored.
-//! Errors name the file, the line and what is wrong.
+//! far). Faces with more than three vertices are split into a fan. The format's other statements
+//! ([`OBJ_SKIPPED`]: texture and normal vertices, groups, materials, lines, curves, ...) are skipped; a
+//! statement the format does not have is an error (a typo such as `fx` would otherwise drop a face
+//! silently). A vertex may carry `w` or an `r g b` colour after its coordinates (both ignored; every
+//! number still checked). Numbers follow [`crate::text`]: one that underflows or overflows f64 is an
+//! error. Errors name the file, the line and what is wrong.
 
 use crate::error::Error;
 use crate::geom::{Aabb, Ray};
@@ -420,41 +424,89 @@ fn bad_line(src: &str, line: usize, field: impl Into<String>, why: impl Into<Str
     }
 }
 
+/// The OBJ statements that [`parse_obj`] reads past: the Wavefront format's statements other than `v` and
+/// `f` (vertex data, elements, free-form geometry, grouping, display and render attributes).
+pub const OBJ_SKIPPED: [&str; 34] = [
+    "vt",
+    "vn",
+    "vp",
+    "cstype",
+    "deg",
+    "bmat",
+    "step",
+    "p",
+    "l",
+    "curv",
+    "curv2",
+    "surf",
+    "parm",
+    "trim",
+    "hole",
+    "scrv",
+    "sp",
+    "end",
+    "con",
+    "g",
+    "s",
+    "mg",
+    "o",
+    "bevel",
+    "c_interp",
+    "d_interp",
+    "lod",
+    "usemtl",
+    "mtllib",
+    "shadow_obj",
+    "trace_obj",
+    "ctech",
+    "stech",
+    "call",
+];
+
 /// Parses OBJ text; `source_name` names it in errors. The camera looks at the centre of the bounds
 /// from the front (+z) and a little above; the light is above and to the right.
 pub fn parse_obj(text: &str, source_name: &str) -> Result<TriScene, Error> {
     let mut verts: Vec<DVec3> = Vec::new();
     // (line, [resolved vertex indices]) per face, resolved once all vertices are read.
     let mut faces: Vec<(usize, Vec<(i64, usize)>)> = Vec::new();
-    for (ln, raw) in text.lines().enumerate() {
+    for (ln, raw) in crate::text::strip_bom(text).lines().enumerate() {
         let line_no = ln + 1;
         let line = raw.split('#').next().unwrap_or("").trim();
         let mut it = line.split_whitespace();
         match it.next() {
             Some("v") => {
+                let toks: Vec<&str> = it.collect();
+                if ![3, 4, 6].contains(&toks.len()) {
+                    return Err(bad_line(
+                        source_name,
+                        line_no,
+                        "v",
+                        format!(
+                            "{} numbers: a vertex is `v x y z`, `v x y z w` or `v x y z r g b`",
+                            toks.len()
+                        ),
+                    ));
+                }
                 let mut p = [0.0; 3];
-                for (a, slot) in p.iter_mut().enumerate() {
-                    let field = format!("v {}", ["x", "y", "z"][a]);
-                    let tok = it.next().ok_or_else(|| {
-                        bad_line(source_name, line_no, &field, "a vertex needs 3 coordinates")
-                    })?;
-                    let x: f64 = tok.parse().map_err(|_| {
-                        bad_line(
-                            source_name,
-                            line_no,
-                            &field,
-                            format!("`{tok}` is not a number"),
-                        )
-                    })?;
+                for (a, tok) in toks.iter().enumerate() {
+                    let field = match (a, toks.len()) {
+                        (0..=2, _) => format!("v {}", ["x", "y", "z"][a]),
+                        (3, 4) => "v w".to_string(),
+                        _ => format!("v {}", ["r", "g", "b"][a - 3]),
+                    };
+                    let x = crate::text::parse_f64(tok)
+                        .map_err(|why| bad_line(source_name, line_no, &field, why))?;
+                    if a < 3 {
+                        p[a] = x;
+                    }
                     if !x.is_finite() {
                         return Err(bad_line(
                             source_name,
                             line_no,
                             &field,
-                            format!("`{tok}` is not finite; coordinates must be finite"),
+                            format!("`{tok}` is not finite; vertex numbers must be finite"),
                         ));
                     }
-                    *slot = x;
                 }
                 verts.push(DVec3::from_array(p));
             }
@@ -490,7 +542,19 @@ pub fn parse_obj(text: &str, source_name: &str) -> Result<TriScene, Error> {
                 }
                 faces.push((line_no, refs));
             }
-            _ => {}
+            Some(k) if OBJ_SKIPPED.contains(&k) => {}
+            Some(k) => {
+                return Err(bad_line(
+                    source_name,
+                    line_no,
+                    k,
+                    format!(
+                        "not an OBJ statement (rtu reads `v` and `f` and skips {})",
+                        OBJ_SKIPPED.join(", ")
+                    ),
+                ))
+            }
+            None => {}
         }
     }
     let mut tris = Vec::new();
@@ -690,11 +754,30 @@ mod tests {
             e.contains("does_not_exist.obj") && e.contains("cannot read"),
             "{e}"
         );
-        let cases: [(&str, &str); 7] = [
+        let cases: [(&str, &str); 11] = [
             ("v 0 0 0\nv 1 0 0\n", "no triangles"),
             ("v 0 0 0\nv 1 nan 0\nv 0 1 0\nf 1 2 3\n", ":2: field `v y`"),
             ("v 0 0 0\nv 1 0 inf\nv 0 1 0\nf 1 2 3\n", "not finite"),
-            ("v 0 0 0\nv 1 0\nv 0 1 0\nf 1 2 3\n", "needs 3 coordinates"),
+            (
+                "v 0 0 0\nv 1 0\nv 0 1 0\nf 1 2 3\n",
+                ":2: field `v`: 2 numbers",
+            ),
+            (
+                "v 0 0 0 1 2\nv 1 0 0\nv 0 1 0\nf 1 2 3\n",
+                ":1: field `v`: 5 numbers",
+            ),
+            (
+                "v 0 0 0\nv 1 0 1e-400\nv 0 1 0\nf 1 2 3\n",
+                ":2: field `v z`: `1e-400` underflows",
+            ),
+            (
+                "v 0 0 0\nv 1 0 0 1e999\nv 0 1 0\nf 1 2 3\n",
+                ":2: field `v w`: `1e999` overflows",
+            ),
+            (
+                "v 0 0 0\nv 1 0 0\nv 0 1 0\nfx 1 2 3\n",
+                ":4: field `fx`: not an OBJ statement",
+            ),
             (
                 "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 7\n",
                 ":4: field `f`: vertex index 7 is out of range",
@@ -717,5 +800,20 @@ mod tests {
             .unwrap_err()
             .to_string();
         assert!(e.contains("index 0"), "{e}");
+    }
+
+    /// A byte-order mark, the statements OBJ has besides `v` and `f`, and vertices with `w` or a colour
+    /// read as the plain file does.
+    #[test]
+    fn obj_byte_order_mark_and_other_statements_are_read_past() {
+        let plain = "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n";
+        let rich = "\u{feff}mtllib a.mtl\no tri\ng g1\ns off\nusemtl red\nv 0 0 0 1\nv 1 0 0 0.5 0.5 0.5\n\
+                    v 0 1 0\nvn 0 0 1\nvt 0 0\nl 1 2\nf 1//1 2//1 3//1\n";
+        let (a, b) = (
+            parse_obj(plain, "a").unwrap(),
+            parse_obj(rich, "b").unwrap(),
+        );
+        assert_eq!(a.tris.len(), 1);
+        assert_eq!(a.tris, b.tris);
     }
 }

@@ -75,19 +75,17 @@ pub(crate) fn line_err(src: &str, line: usize, field: &str, why: impl Into<Strin
     }
 }
 
-fn parse_num(s: &str) -> Option<f64> {
-    match s.trim() {
-        "inf" | "+inf" | "Infinity" => Some(f64::INFINITY),
-        "-inf" | "-Infinity" => Some(f64::NEG_INFINITY),
-        t => t.parse::<f64>().ok(),
-    }
+/// One number of a CSV cell or a JSON string (see [`crate::text::parse_f64`]).
+fn parse_num(s: &str) -> Result<f64, String> {
+    crate::text::parse_f64(s)
 }
 
-pub(crate) fn json_num(v: &Value) -> Option<f64> {
+/// One number of a JSON value: a number, or a string such as `"inf"`.
+pub(crate) fn json_num(v: &Value) -> Result<f64, String> {
     match v {
-        Value::Number(n) => n.as_f64(),
+        Value::Number(n) => n.as_f64().ok_or_else(|| format!("`{n}` is not a number")),
         Value::String(s) => parse_num(s),
-        _ => None,
+        _ => Err(format!("`{v}` is not a number")),
     }
 }
 
@@ -167,6 +165,7 @@ pub(crate) fn json_object(
     text: &str,
     index: u64,
 ) -> Result<(serde_json::Map<String, Value>, u64), Error> {
+    crate::text::check_json_numbers(text).map_err(|(key, why)| line_err(src, line, &key, why))?;
     let v: Value = serde_json::from_str(text)
         .map_err(|e| line_err(src, line, "(line)", format!("not JSON: {e}")))?;
     let Value::Object(obj) = v else {
@@ -186,8 +185,21 @@ pub(crate) fn json_object(
     Ok((obj, tag))
 }
 
+/// The keys of a slab or cull-plane vector line.
+const JSON_KEYS: [&str; 8] = [
+    "tag", "origin", "dir", "t_min", "t_max", "box_min", "box_max", "planes",
+];
+
 fn parse_json_line(src: &str, line: usize, text: &str, index: u64) -> Result<Vector, Error> {
     let (obj, tag) = json_object(src, line, text, index)?;
+    if let Some(k) = obj.keys().find(|k| !JSON_KEYS.contains(&k.as_str())) {
+        return Err(line_err(
+            src,
+            line,
+            k,
+            crate::text::unknown_field(k, &JSON_KEYS),
+        ));
+    }
     let mut f = [0.0; 14];
     for (name, base) in [("origin", 0), ("dir", 3), ("box_min", 8), ("box_max", 11)].iter() {
         let arr = obj
@@ -204,21 +216,14 @@ fn parse_json_line(src: &str, line: usize, text: &str, index: u64) -> Result<Vec
             ));
         }
         for (a, x) in arr.iter().enumerate() {
-            f[base + a] = json_num(x).ok_or_else(|| {
-                line_err(
-                    src,
-                    line,
-                    &format!("{name}[{a}]"),
-                    format!("`{x}` is not a number"),
-                )
-            })?;
+            f[base + a] =
+                json_num(x).map_err(|why| line_err(src, line, &format!("{name}[{a}]"), why))?;
         }
     }
     for (name, idx, default) in [("t_min", 6, 0.0), ("t_max", 7, f64::INFINITY)] {
         f[idx] = match obj.get(name) {
             None => default,
-            Some(x) => json_num(x)
-                .ok_or_else(|| line_err(src, line, name, format!("`{x}` is not a number")))?,
+            Some(x) => json_num(x).map_err(|why| line_err(src, line, name, why))?,
         };
     }
     let mut planes = vec![];
@@ -239,14 +244,8 @@ fn parse_json_line(src: &str, line: usize, text: &str, index: u64) -> Result<Vec
                 .ok_or_else(|| line_err(src, line, &field, "expected [nx, ny, nz, w]"))?;
             let mut v = [0.0; 4];
             for (c, x) in q.iter().enumerate() {
-                v[c] = json_num(x).ok_or_else(|| {
-                    line_err(
-                        src,
-                        line,
-                        &format!("{field}[{c}]"),
-                        format!("`{x}` is not a number"),
-                    )
-                })?;
+                v[c] = json_num(x)
+                    .map_err(|why| line_err(src, line, &format!("{field}[{c}]"), why))?;
             }
             planes.push(Plane {
                 n: DVec3::new(v[0], v[1], v[2]),
@@ -257,12 +256,80 @@ fn parse_json_line(src: &str, line: usize, text: &str, index: u64) -> Result<Vec
     build(src, line, tag, &f, planes)
 }
 
+/// One line of a JSON-lines file as text: not UTF-8 is an error naming the line; the first line may begin
+/// with a byte-order mark.
+pub(crate) fn read_line(
+    src: &str,
+    line: usize,
+    l: std::io::Result<String>,
+) -> Result<String, Error> {
+    match l {
+        Ok(t) if line == 1 => Ok(crate::text::strip_bom(&t).to_string()),
+        Ok(t) => Ok(t),
+        Err(e) if e.kind() == std::io::ErrorKind::InvalidData => {
+            Err(line_err(src, line, "(line)", "not UTF-8 text"))
+        }
+        Err(e) => Err(Error::Io(format!("{src}:{line}: {e}"))),
+    }
+}
+
+/// Every column of a vector CSV header is known (a misspelt column would be ignored, and its value with
+/// it) and named once.
+fn check_header(src: &str, h: &[String]) -> Result<(), Error> {
+    let planes: Vec<String> = (0..MAX_VECTOR_PLANES)
+        .flat_map(|k| (0..4).map(move |c| plane_col(k, c)))
+        .collect();
+    for (i, c) in h.iter().enumerate() {
+        if h[..i].contains(c) {
+            return Err(line_err(src, 1, c, "column named twice in the header"));
+        }
+        if !CSV_FIELDS.contains(&c.as_str()) && !planes.contains(c) {
+            let mut known: Vec<&str> = CSV_FIELDS.to_vec();
+            known.push("p0_nx, p0_ny, p0_nz, p0_w, ... p7_w");
+            let why = crate::text::unknown_field(c, &known);
+            return Err(line_err(src, 1, c, format!("{why} in the header")));
+        }
+    }
+    Ok(())
+}
+
+/// A CSV reader's error as an error naming the line (a row with the wrong number of cells, text that is
+/// not UTF-8), or the file.
+pub(crate) fn csv_err(src: &str, e: csv::Error) -> Error {
+    let line = e.position().map(|p| p.line() as usize);
+    match (e.kind(), line) {
+        (
+            csv::ErrorKind::UnequalLengths {
+                expected_len, len, ..
+            },
+            Some(line),
+        ) => line_err(
+            src,
+            line,
+            "(row)",
+            format!("{len} cells, but the header has {expected_len}"),
+        ),
+        (csv::ErrorKind::Utf8 { .. }, Some(line)) => line_err(src, line, "(row)", "not UTF-8 text"),
+        _ => Error::Io(format!("{src}: {e}")),
+    }
+}
+
 /// Streams vectors from a reader. Each item is a vector or an error naming the line and field.
 pub fn read_vectors<'a, R: BufRead + Send + 'a>(
     reader: R,
     fmt: VecFormat,
     src: impl Into<String>,
 ) -> Box<dyn Iterator<Item = Result<Vector, Error>> + Send + 'a> {
+    Box::new(read_numbered_vectors(reader, fmt, src).map(|r| r.map(|(_, v)| v)))
+}
+
+/// [`read_vectors`] with each vector's line number (1-based), for errors found after reading (a vector
+/// that does not fit a format).
+pub fn read_numbered_vectors<'a, R: BufRead + Send + 'a>(
+    reader: R,
+    fmt: VecFormat,
+    src: impl Into<String>,
+) -> Box<dyn Iterator<Item = Result<(usize, Vector), Error>> + Send + 'a> {
     let src: String = src.into();
     match fmt {
         VecFormat::JsonLines => {
@@ -270,15 +337,15 @@ pub fn read_vectors<'a, R: BufRead + Send + 'a>(
             Box::new(reader.lines().enumerate().filter_map(move |(n, l)| {
                 let line = n + 1;
                 let src = src.as_str();
-                let text = match l {
+                let text = match read_line(src, line, l) {
                     Ok(t) => t,
-                    Err(e) => return Some(Err(Error::Io(format!("{src}:{line}: {e}")))),
+                    Err(e) => return Some(Err(e)),
                 };
                 let t = text.trim();
                 if t.is_empty() || t.starts_with('#') {
                     return None;
                 }
-                let r = parse_json_line(src, line, t, index);
+                let r = parse_json_line(src, line, t, index).map(|v| (line, v));
                 index += 1;
                 Some(r)
             }))
@@ -294,6 +361,7 @@ pub fn read_vectors<'a, R: BufRead + Send + 'a>(
                 .map_err(|e| Error::Io(format!("{src}: cannot read the CSV header: {e}")));
             let src_h = src.clone();
             let cols = header.and_then(|h| {
+                check_header(&src_h, &h)?;
                 let mut cols = [usize::MAX; 15];
                 for (k, name) in CSV_FIELDS.iter().enumerate() {
                     match h.iter().position(|c| c == name) {
@@ -333,7 +401,7 @@ pub fn read_vectors<'a, R: BufRead + Send + 'a>(
             let mut index = 0u64;
             Box::new(rdr.into_records().map(move |rec| {
                 let src = src.as_str();
-                let rec = rec.map_err(|e| Error::Io(format!("{src}: {e}")))?;
+                let rec = rec.map_err(|e| csv_err(src, e))?;
                 let line = rec.position().map(|p| p.line() as usize).unwrap_or(0);
                 let get = |k: usize| {
                     rec.get(cols[k])
@@ -356,9 +424,8 @@ pub fn read_vectors<'a, R: BufRead + Send + 'a>(
                 let mut f = [0.0; 14];
                 for k in 1..15 {
                     let s = get(k)?;
-                    f[k - 1] = parse_num(s).ok_or_else(|| {
-                        line_err(src, line, CSV_FIELDS[k], format!("`{s}` is not a number"))
-                    })?;
+                    f[k - 1] =
+                        parse_num(s).map_err(|why| line_err(src, line, CSV_FIELDS[k], why))?;
                 }
                 let mut planes = vec![];
                 for (k, pc) in pcols.iter().enumerate() {
@@ -368,21 +435,15 @@ pub fn read_vectors<'a, R: BufRead + Send + 'a>(
                     }
                     let mut v = [0.0; 4];
                     for c in 0..4 {
-                        v[c] = parse_num(cells[c]).ok_or_else(|| {
-                            line_err(
-                                src,
-                                line,
-                                &plane_col(k, c),
-                                format!("`{}` is not a number", cells[c]),
-                            )
-                        })?;
+                        v[c] = parse_num(cells[c])
+                            .map_err(|why| line_err(src, line, &plane_col(k, c), why))?;
                     }
                     planes.push(Plane {
                         n: DVec3::new(v[0], v[1], v[2]),
                         w: v[3],
                     });
                 }
-                build(src, line, tag, &f, planes)
+                build(src, line, tag, &f, planes).map(|v| (line, v))
             }))
         }
     }
@@ -616,6 +677,157 @@ mod tests {
             .unwrap_err()
             .to_string();
         assert!(e.contains("test:2") && e.contains("box max.y"), "{e}");
+    }
+
+    fn err(fmt: VecFormat, text: &str) -> String {
+        match read(fmt, text).into_iter().find_map(Result::err) {
+            Some(e) => e.to_string(),
+            None => panic!("accepted: {text}"),
+        }
+    }
+
+    /// Regression (black-box test): `tmax` for `t_max` ran with `t_max = inf` and answered a hit; a
+    /// misspelt `plane` ran with no plane; an extra or repeated CSV column was ignored.
+    #[test]
+    fn unknown_fields_and_columns_are_errors() {
+        let b = "\"origin\":[0,0,-5],\"dir\":[0,0,1],\"box_min\":[-1,-1,-1],\"box_max\":[1,1,1]";
+        let e = err(VecFormat::JsonLines, &format!("{{{b},\"tmax\":2}}"));
+        assert!(
+            e.contains("test:1") && e.contains("`tmax`") && e.contains("did you mean `t_max`"),
+            "{e}"
+        );
+        let e = err(
+            VecFormat::JsonLines,
+            &format!("\n{{{b},\"plane\":[[1,0,0,0]]}}"),
+        );
+        assert!(
+            e.contains("test:2") && e.contains("did you mean `planes`"),
+            "{e}"
+        );
+        let row = "1,0,0,-5,0,0,1,0,inf,-1,-1,-1,1,1,1";
+        let e = err(
+            VecFormat::Csv,
+            &format!("{},tmax\n{row},2\n", csv_vector_header()),
+        );
+        assert!(
+            e.contains("test:1") && e.contains("`tmax`") && e.contains("did you mean `t_max`"),
+            "{e}"
+        );
+        let e = err(
+            VecFormat::Csv,
+            &format!("{},p8_nx\n{row},2\n", csv_vector_header()),
+        );
+        assert!(e.contains("`p8_nx`") && e.contains("unknown"), "{e}");
+        let e = err(
+            VecFormat::Csv,
+            &format!("{},t_max\n{row},2\n", csv_vector_header()),
+        );
+        assert!(e.contains("`t_max`") && e.contains("twice"), "{e}");
+    }
+
+    /// A byte-order mark is accepted by both readers; numbers f64 cannot hold are errors naming them.
+    #[test]
+    fn byte_order_marks_and_numbers_out_of_range() {
+        let line =
+            "{\"origin\":[0,0,-5],\"dir\":[0,0,1],\"box_min\":[-1,-1,-1],\"box_max\":[1,1,1]}";
+        let csv = format!(
+            "{}\n1,0,0,-5,0,0,1,0,inf,-1,-1,-1,1,1,1\n",
+            csv_vector_header()
+        );
+        let plain = read(VecFormat::JsonLines, line);
+        assert!(plain[0].is_ok());
+        assert_eq!(
+            read(VecFormat::JsonLines, &format!("\u{feff}{line}")),
+            plain
+        );
+        let plain = read(VecFormat::Csv, &csv);
+        assert!(plain[0].is_ok());
+        assert_eq!(read(VecFormat::Csv, &format!("\u{feff}{csv}")), plain);
+        for (text, fmt, field, why) in [
+            (
+                line.replace("[0,0,1]", "[0,1e-400,1]"),
+                VecFormat::JsonLines,
+                "dir",
+                "underflows",
+            ),
+            (
+                line.replace("[0,0,1]", "[0,\"-1e-400\",1]"),
+                VecFormat::JsonLines,
+                "dir[1]",
+                "underflows",
+            ),
+            (
+                line.replace("}", ",\"t_max\":1e999}"),
+                VecFormat::JsonLines,
+                "t_max",
+                "overflows",
+            ),
+            (
+                csv.replace("0,0,1,0,inf", "0,1e-400,1,0,inf"),
+                VecFormat::Csv,
+                "dy",
+                "underflows",
+            ),
+            (
+                csv.replace("0,0,1,0,inf", "0,0,1,0,2e308"),
+                VecFormat::Csv,
+                "t_max",
+                "overflows",
+            ),
+        ] {
+            let e = err(fmt, &text);
+            assert!(
+                e.contains(&format!("field `{field}`")) && e.contains(why),
+                "{text}: {e}"
+            );
+        }
+        // A subnormal is a number, read exactly.
+        let v = read(
+            VecFormat::JsonLines,
+            &line.replace("[0,0,1]", "[0,5e-324,1]"),
+        )
+        .remove(0)
+        .unwrap();
+        assert_eq!(v.ray.dir.y, f64::from_bits(1));
+    }
+
+    #[test]
+    fn csv_rows_of_the_wrong_length_name_their_line() {
+        let text = format!(
+            "{}\n1,0,0,-5,0,0,1,0,inf,-1,-1,-1,1,1,1\n2,0,0,-5,0,0,1\n",
+            csv_vector_header()
+        );
+        let e = err(VecFormat::Csv, &text);
+        assert!(
+            e.contains("test:3") && e.contains("7 cells, but the header has 15"),
+            "{e}"
+        );
+        let line =
+            "{\"origin\":[0,0,-5],\"dir\":[0,0,1],\"box_min\":[-1,-1,-1],\"box_max\":[1,1,1]}\n";
+        for (fmt, head) in [
+            (VecFormat::JsonLines, String::new()),
+            (VecFormat::Csv, csv_vector_header() + "\n"),
+        ] {
+            let body = if fmt == VecFormat::Csv {
+                "1,0,0,-5,0,0,1,0,inf,-1,-1,-1,1,1,1\n"
+            } else {
+                line
+            };
+            let mut bytes = format!("{head}{body}").into_bytes();
+            if fmt == VecFormat::Csv {
+                bytes.extend_from_slice(b"2,0,0,-5,0,0,1,0,inf,-1,-1,-1,1,1,\xff\n");
+            } else {
+                bytes.extend_from_slice(b"\xff\xfe\n");
+            }
+            let got: Vec<_> = read_vectors(std::io::Cursor::new(bytes), fmt, "test").collect();
+            assert!(got[0].is_ok(), "{fmt:?}");
+            let e = got[1].clone().unwrap_err().to_string();
+            let n = if fmt == VecFormat::Csv { 3 } else { 2 };
+            assert!(
+                e.contains(&format!("test:{n}")) && e.contains("not UTF-8"),
+                "{fmt:?}: {e}"
+            );
+        }
     }
 
     #[test]
