@@ -181,7 +181,7 @@ pub fn run(a: &Args, out: &Path) -> Result<(), String> {
         "# peak RSS KiB: {} after {} streamed vectors, {} after {} more",
         rss[0].1, rss[0].0, rss[1].1, rss[1].0
     );
-    std::fs::create_dir_all(out).map_err(|e| e.to_string())?;
-    std::fs::write(out.join("bench.csv"), csv).map_err(|e| e.to_string())?;
+    std::fs::create_dir_all(out).map_err(|e| format!("{}: {e}", out.display()))?;
+    crate::out_file::write_file(&out.join("bench.csv"), csv)?;
     Ok(())
 }

@@ -258,8 +258,8 @@ pub fn scenes(a: &Args, out: &Path) -> Result<String, String> {
             }
         }
     }
-    std::fs::create_dir_all(out).map_err(|e| e.to_string())?;
-    std::fs::write(out.join("bundle_scenes.csv"), &csv).map_err(|e| e.to_string())?;
+    std::fs::create_dir_all(out).map_err(|e| format!("{}: {e}", out.display()))?;
+    crate::out_file::write_file(&out.join("bundle_scenes.csv"), &csv)?;
     let chart_path = match &a.chart_path {
         Some(p) => p.clone(),
         None => paths
@@ -544,8 +544,8 @@ pub fn campaign(a: &CampaignArgs, out: &Path) -> Result<String, String> {
             names[k], o.0, o.1
         );
     }
-    std::fs::create_dir_all(out).map_err(|e| e.to_string())?;
-    std::fs::write(out.join("bundle_campaign.md"), &rep).map_err(|e| e.to_string())?;
+    std::fs::create_dir_all(out).map_err(|e| format!("{}: {e}", out.display()))?;
+    crate::out_file::write_file(&out.join("bundle_campaign.md"), &rep)?;
     let bad: Vec<String> = names
         .iter()
         .zip(&tallies)

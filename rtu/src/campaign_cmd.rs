@@ -207,8 +207,8 @@ pub fn run(a: &Args, out: &Path) -> Result<(), String> {
             log.xsim(&f.name(), r, a.lockstep, t.elapsed().as_secs_f64());
         }
     }
-    std::fs::create_dir_all(out).map_err(|e| e.to_string())?;
-    std::fs::write(out.join("campaign.csv"), &log.csv).map_err(|e| e.to_string())?;
+    std::fs::create_dir_all(out).map_err(|e| format!("{}: {e}", out.display()))?;
+    crate::out_file::write_file(&out.join("campaign.csv"), &log.csv)?;
     println!("wrote {}", out.join("campaign.csv").display());
     if log.failed.is_empty() {
         Ok(())

@@ -284,8 +284,8 @@ pub fn scenes(
             }
         }
     }
-    std::fs::create_dir_all(out).map_err(|e| e.to_string())?;
-    std::fs::write(out.join("cull_scenes.csv"), csv).map_err(|e| e.to_string())?;
+    std::fs::create_dir_all(out).map_err(|e| format!("{}: {e}", out.display()))?;
+    crate::out_file::write_file(&out.join("cull_scenes.csv"), csv)?;
     let checked: u64 = check.iter().map(|c| c.0).sum();
     if let Some((_, v, which)) = check.iter().find(|c| c.1 > 0) {
         return Err(format!(

@@ -242,7 +242,7 @@ pub fn run(a: &Args, out: &Path) -> Result<String, String> {
             Format::Float(x) => rtl::export::slab_float_verilog_ladder(x)?,
         };
         let path = dir.join(format!("{m}.v"));
-        std::fs::write(&path, v).map_err(|e| format!("{}: {e}", path.display()))?;
+        crate::out_file::write_file(&path, v)?;
         if a.synth && !area.contains_key(&m) {
             eprintln!("synthesising {m} ...");
             let row = crate::synth::synth(&path, &m, latency(f), &dir.join("synth"))?;
@@ -260,11 +260,11 @@ pub fn run(a: &Args, out: &Path) -> Result<String, String> {
             text.push_str("module,latency,generic_cells,ice40_lut4,ice40_carry,ice40_ff,ice40_depth,xilinx_lut,xilinx_dsp\n");
         }
         text.push_str(&new_rows);
-        std::fs::write(&fit_area, text).map_err(|e| format!("{}: {e}", fit_area.display()))?;
+        crate::out_file::write_file(&fit_area, text)?;
     }
     let (csv, md) = render(a, &rows, &empty, &area, &fp32);
-    std::fs::write(dir.join("fit.csv"), &csv).map_err(|e| e.to_string())?;
-    std::fs::write(dir.join("fit.md"), &md).map_err(|e| e.to_string())?;
+    crate::out_file::write_file(&dir.join("fit.csv"), &csv)?;
+    crate::out_file::write_file(&dir.join("fit.md"), &md)?;
     Ok(md)
 }
 

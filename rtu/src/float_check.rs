@@ -147,8 +147,8 @@ pub fn run(a: &Args, out: &Path) -> Result<(), String> {
             }
         }
     }
-    std::fs::create_dir_all(out).map_err(|e| e.to_string())?;
-    std::fs::write(out.join("float_check.csv"), csv).map_err(|e| e.to_string())?;
+    std::fs::create_dir_all(out).map_err(|e| format!("{}: {e}", out.display()))?;
+    crate::out_file::write_file(&out.join("float_check.csv"), csv)?;
     println!("wrote {}", out.join("float_check.csv").display());
     if failed.is_empty() {
         Ok(())

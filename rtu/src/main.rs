@@ -10,6 +10,7 @@ mod cull_cmd;
 mod fit_cmd;
 mod float_check;
 mod main_job;
+mod out_file;
 mod run_bundles;
 mod run_vectors;
 mod scene;
@@ -293,12 +294,12 @@ fn main() -> ExitCode {
             })?;
             let t = cull_cmd::campaign(vectors, &ks, &fx, &fl, seed)?;
             print!("{t}");
-            std::fs::create_dir_all(&cli.out).map_err(|e| e.to_string())?;
-            std::fs::write(cli.out.join("cull_campaign.md"), t).map_err(|e| e.to_string())
+            std::fs::create_dir_all(&cli.out).map_err(|e| format!("{}: {e}", cli.out.display()))?;
+            crate::out_file::write_file(&cli.out.join("cull_campaign.md"), t)
         })(),
         Cmd::BundleScenes(a) => bundle_cmd::scenes(&a, &cli.out).and_then(|t| {
             print!("{t}");
-            std::fs::write(cli.out.join("bundle_scenes.md"), t).map_err(|e| e.to_string())
+            crate::out_file::write_file(&cli.out.join("bundle_scenes.md"), t)
         }),
         Cmd::Fit(a) => fit_cmd::run(&a, &cli.out).map(|t| print!("{t}")),
         Cmd::Stability => stability_cmd::run(&cli.out).map(|t| print!("{t}")),
@@ -322,7 +323,7 @@ fn main() -> ExitCode {
             let names = list(&scenes, |s| Ok(s.to_string()))?;
             let t = cull_cmd::scenes(&names, &ks, &fx, &fl, width, height, &cli.out)?;
             print!("{t}");
-            std::fs::write(cli.out.join("cull_scenes.md"), t).map_err(|e| e.to_string())
+            crate::out_file::write_file(&cli.out.join("cull_scenes.md"), t)
         })(),
     };
     match r {

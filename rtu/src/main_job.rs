@@ -292,7 +292,7 @@ pub fn run(scene: &Scene, out: &Path) -> Result<(Vec<Row>, String), String> {
         vcd.display()
     );
     std::fs::create_dir_all(out).map_err(|e| format!("{}: {e}", out.display()))?;
-    std::fs::write(out.join("report.md"), &report).map_err(|e| e.to_string())?;
+    crate::out_file::write_file(&out.join("report.md"), &report)?;
     let mut csv = String::from("format,cell,tests,rtl_tests,exact_hits,hits,false_hits,false_hit_rate,violations,rtl_model_mismatches,mean_slack,rtl_tests_per_s\n");
     for r in &rows {
         let _ = writeln!(
@@ -312,7 +312,7 @@ pub fn run(scene: &Scene, out: &Path) -> Result<(Vec<Row>, String), String> {
             r.rtl_rate
         );
     }
-    std::fs::write(out.join("summary.csv"), csv).map_err(|e| e.to_string())?;
+    crate::out_file::write_file(&out.join("summary.csv"), csv)?;
     Ok((rows, report))
 }
 

@@ -1,16 +1,19 @@
 //! `rtu run --bundles`: users' bundle vectors (`golden::bundle::vectors`) through the AllHit / AnyHit pair
 //! and the results processor, on the fixed or float datapath.
 
+use crate::out_file::Output;
 use glam::DVec3;
 use golden::bundle::edge::Bundle;
 use golden::bundle::fix::{self as bundle_fix, BundleFixFormat};
 use golden::bundle::float as bundle_float;
 use golden::bundle::split::{split_fix, split_with, SplitResult};
-use golden::bundle::vectors::{read_bundles, write_bundle_result, BundleResult, BundleVector};
+use golden::bundle::vectors::{
+    read_numbered_bundles, write_bundle_result, BundleResult, BundleVector,
+};
 use golden::format::fixed::{FixFormat, GridMap};
 use golden::format::float::FloatFormat;
 use rtl::bundle::split::{BundleSplitIo, SplitIn, SplitJob, SPLIT_RAYS};
-use std::io::{BufReader, BufWriter, Write};
+use std::io::BufReader;
 use std::path::Path;
 use tb::bundle::split::SplitRtl;
 use tb::engine::Engine;
@@ -86,6 +89,7 @@ fn run_rtl<S: BundleSplitIo>(
     bf: &BundleFixFormat,
     map: &GridMap,
     vs: &[BundleVector],
+    at: &[String],
     vcd: Option<&Path>,
     mut sink: impl FnMut(u64, BundleResult) -> Result<(), String>,
 ) -> Result<(), String> {
@@ -93,16 +97,16 @@ fn run_rtl<S: BundleSplitIo>(
     if let Some(p) = vcd {
         dut = dut.vcd_to(p).map_err(|e| format!("{}: {e}", p.display()))?;
     }
-    for v in vs {
+    for (v, at) in vs.iter().zip(at) {
         if v.rays.len() > SPLIT_RAYS {
             return Err(format!(
-                "bundle with tag {}: {} rays, but the results processor holds {SPLIT_RAYS}",
+                "{at}: bundle with tag {}: {} rays, but the results processor holds {SPLIT_RAYS}",
                 v.tag,
                 v.rays.len()
             ));
         }
         let (job, rays) =
-            fix_job(bf, map, v).map_err(|e| format!("bundle with tag {}: {e}", v.tag))?;
+            fix_job(bf, map, v).map_err(|e| format!("{at}: bundle with tag {}: {e}", v.tag))?;
         for (a, r) in rays.iter().enumerate() {
             dut.step(&SplitIn {
                 write: Some((a, *r)),
@@ -175,8 +179,7 @@ pub fn run(
 ) -> Result<(), String> {
     if engine == Engine::Verilator {
         return Err("--bundles runs on the model and rtl engines; the Verilated pair and results processor \
-             are checked against the same model by `cargo test -p tb --test bundle_split` (and bundle_fix, \
-             bundle_float)"
+             are checked against the same model by `cargo test -p tb --test bundle`"
             .into());
     }
     if vcd.is_some() && engine != Engine::Rtl {
@@ -190,9 +193,13 @@ pub fn run(
             std::fs::File::open(input).map_err(|e| format!("{src}: {e}"))?,
         ))
     };
-    let vs: Vec<BundleVector> = read_bundles(reader, src.clone())
+    let numbered: Vec<(usize, BundleVector)> = read_numbered_bundles(reader, src.clone())
         .collect::<Result<_, _>>()
         .map_err(|e| e.to_string())?;
+    let (at, vs): (Vec<String>, Vec<BundleVector>) = numbered
+        .into_iter()
+        .map(|(line, v)| (format!("{src}:{line}"), v))
+        .unzip();
     let lower = format.to_ascii_lowercase();
     let dp = if lower.starts_with('e') || lower.starts_with("fp") || lower.starts_with("bf") {
         Dp::Float(FloatFormat::parse(format).map_err(|e| e.to_string())?)
@@ -208,29 +215,25 @@ pub fn run(
             GridMap::for_bounds(f, lo, hi).map_err(|e| e.to_string())?,
         )
     };
-    let mut w: Box<dyn Write> = match output {
-        Some(p) => Box::new(BufWriter::new(
-            std::fs::File::create(p).map_err(|e| format!("{}: {e}", p.display()))?,
-        )),
-        None => Box::new(BufWriter::new(std::io::stdout())),
+    let mut w = Output::open(output)?;
+    let mut sink = |tag: u64, r: BundleResult| {
+        write_bundle_result(&mut w, tag, &r).map_err(|e| format!("{}: cannot write: {e}", w.name()))
     };
-    let mut sink =
-        |tag: u64, r: BundleResult| write_bundle_result(&mut w, tag, &r).map_err(|e| e.to_string());
     match (&dp, engine) {
         (_, Engine::Model) => {
-            for v in &vs {
-                let r = judge(&dp, v).map_err(|e| format!("{src}: bundle with tag {}: {e}", v.tag))?;
+            for (v, at) in vs.iter().zip(&at) {
+                let r = judge(&dp, v).map_err(|e| format!("{at}: bundle with tag {}: {e}", v.tag))?;
                 sink(v.tag, r)?;
             }
         }
         (Dp::Fix(bf, map), _) => {
             let f = bf.base;
             if f == FixFormat::b8() {
-                run_rtl::<rtl::BundleSplitB8>(bf, map, &vs, vcd, sink)?;
+                run_rtl::<rtl::BundleSplitB8>(bf, map, &vs, &at, vcd, sink)?;
             } else if f == FixFormat::b12() {
-                run_rtl::<rtl::BundleSplitB12>(bf, map, &vs, vcd, sink)?;
+                run_rtl::<rtl::BundleSplitB12>(bf, map, &vs, &at, vcd, sink)?;
             } else if f == FixFormat::b16() {
-                run_rtl::<rtl::BundleSplitB16>(bf, map, &vs, vcd, sink)?;
+                run_rtl::<rtl::BundleSplitB16>(bf, map, &vs, &at, vcd, sink)?;
             } else {
                 return Err(format!(
                     "no results processor instantiated for {} (b8, b12, b16 are)",
@@ -240,11 +243,11 @@ pub fn run(
         }
         (Dp::Float(_), _) => {
             return Err("float bundles run on the model engine (the float pair has no results processor \
-                 in RTL; the pair is checked against the model by `cargo test -p tb --test bundle_float`)"
+                 in RTL; the pair is checked against the model by `cargo test -p tb --test bundle`)"
                 .into())
         }
     }
-    w.flush().map_err(|e| e.to_string())?;
+    w.commit()?;
     eprintln!(
         "rtu run --bundles: {} bundles on {format}, {engine:?} engine",
         vs.len()

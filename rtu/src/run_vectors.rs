@@ -1,5 +1,6 @@
 //! `rtu run` and `rtu gen`: users' vector files through any engine, and generated vectors out to a file.
 
+use crate::out_file::Output;
 use glam::DVec3;
 use golden::format::fixed::{FixFormat, GridMap};
 use golden::format::float::FloatFormat;
@@ -8,10 +9,10 @@ use golden::plane::float::CullFloatFormat;
 use golden::slab::float::{quantize_box, quantize_ray};
 use golden::slab::gen::{GenKind, SlabGen};
 use golden::slab::vectors::{
-    csv_vector_header, read_vectors, write_header, write_result, write_vector, VecFormat, Vector,
-    MAX_VECTOR_PLANES,
+    csv_vector_header, read_numbered_vectors, write_header, write_result, write_vector, VecFormat,
+    Vector, MAX_VECTOR_PLANES,
 };
-use std::io::{BufRead, BufReader, BufWriter, Read, Write};
+use std::io::{BufRead, BufReader, Read};
 use std::path::Path;
 use std::sync::{Arc, Mutex};
 use tb::engine::{run_cull_fix, run_cull_float, run_fix, run_float, Engine};
@@ -56,7 +57,7 @@ fn vectors_of(
     bytes: Arc<Vec<u8>>,
     fmt: VecFormat,
     src: String,
-) -> impl Iterator<Item = Result<Vector, golden::Error>> {
+) -> impl Iterator<Item = Result<(usize, Vector), golden::Error>> {
     struct Shared(Arc<Vec<u8>>);
     impl AsRef<[u8]> for Shared {
         fn as_ref(&self) -> &[u8] {
@@ -65,7 +66,7 @@ fn vectors_of(
     }
     let reader: Box<dyn BufRead + Send> =
         Box::new(BufReader::new(std::io::Cursor::new(Shared(bytes))));
-    read_vectors(reader, fmt, src)
+    read_numbered_vectors(reader, fmt, src)
 }
 
 /// Runs a vector file through `engine` on the fixed (`b8`, `b12`, `b16`, `G,I,FI,T,FT`) or float (`fp32`,
@@ -90,13 +91,10 @@ pub fn run(
     };
     let src = input.display().to_string();
     let bytes = Arc::new(slurp(input)?);
-    let mut w: Box<dyn Write + Send> = match output {
-        Some(p) => Box::new(BufWriter::new(
-            std::fs::File::create(p).map_err(|e| format!("{}: {e}", p.display()))?,
-        )),
-        None => Box::new(BufWriter::new(std::io::stdout())),
-    };
-    write_header(&mut w, vfmt).map_err(|e| e.to_string())?;
+    let mut w = Output::open(output)?;
+    let mut header = vec![];
+    write_header(&mut header, vfmt).map_err(|e| e.to_string())?;
+    w.set_header(header);
     let failure: Arc<Mutex<Option<String>>> = Arc::new(Mutex::new(None));
     let vdir = out.join("verilator");
     let lower = format.to_ascii_lowercase();
@@ -173,21 +171,21 @@ pub fn run(
             ),
         )
     };
-    w.flush().map_err(|e| e.to_string())?;
     if let Some(e) = failure.lock().unwrap().take() {
         return Err(e);
     }
+    w.commit()?;
     eprintln!("rtu run: {n} vectors through the {engine:?} engine, {what}");
     Ok(())
 }
 
 fn emit(
-    w: &mut Box<dyn Write + Send>,
+    w: &mut Output,
     vfmt: VecFormat,
     tag: u64,
     (hit, en, ex): (bool, f64, f64),
 ) -> Result<(), String> {
-    write_result(w, vfmt, tag, hit, en, ex).map_err(|e| e.to_string())
+    write_result(w, vfmt, tag, hit, en, ex).map_err(|e| w.err(e))
 }
 
 /// Bounds of the origins and non-empty boxes of a vector file (validating every line on the way).
@@ -195,7 +193,7 @@ fn file_bounds(bytes: Arc<Vec<u8>>, vfmt: VecFormat, src: &str) -> Result<(DVec3
     let mut lo = DVec3::splat(f64::INFINITY);
     let mut hi = DVec3::splat(f64::NEG_INFINITY);
     for v in vectors_of(bytes, vfmt, src.to_string()) {
-        let v = v.map_err(|e| e.to_string())?;
+        let (_, v) = v.map_err(|e| e.to_string())?;
         lo = lo.min(v.ray.origin);
         hi = hi.max(v.ray.origin);
         if !v.bx.is_empty() {
@@ -217,11 +215,11 @@ fn quantized<R, B>(
     failure: Arc<Mutex<Option<String>>>,
     q: impl Fn(&Vector) -> Result<(R, B), golden::Error> + Send + 'static,
 ) -> impl Iterator<Item = (u64, R, B)> + Send + 'static {
-    vectors_of(bytes, vfmt, src).map_while(move |v| {
-        let r = v.map_err(|e| e.to_string()).and_then(|v| {
+    vectors_of(bytes, vfmt, src.clone()).map_while(move |v| {
+        let r = v.map_err(|e| e.to_string()).and_then(|(line, v)| {
             q(&v)
                 .map(|(r, b)| (v.tag, r, b))
-                .map_err(|e| format!("vector with tag {}: {e}", v.tag))
+                .map_err(|e| format!("{src}:{line}: vector with tag {}: {e}", v.tag))
         });
         match r {
             Ok(t) => Some(t),
@@ -239,14 +237,9 @@ pub fn gen(kind: GenKind, n: u64, seed: u64, output: Option<&Path>) -> Result<()
     let vfmt = output
         .map(VecFormat::from_path)
         .unwrap_or(VecFormat::JsonLines);
-    let mut w: Box<dyn Write> = match output {
-        Some(p) => Box::new(BufWriter::new(
-            std::fs::File::create(p).map_err(|e| format!("{}: {e}", p.display()))?,
-        )),
-        None => Box::new(BufWriter::new(std::io::stdout())),
-    };
+    let mut w = Output::open(output)?;
     if vfmt == VecFormat::Csv {
-        writeln!(w, "{}", csv_vector_header()).map_err(|e| e.to_string())?;
+        w.set_header(format!("{}\n", csv_vector_header()));
     }
     for (tag, (ray, bx)) in SlabGen::new(kind, lo, hi, 1.0 / 64.0, seed)
         .take(n as usize)
@@ -262,7 +255,7 @@ pub fn gen(kind: GenKind, n: u64, seed: u64, output: Option<&Path>) -> Result<()
                 planes: vec![],
             },
         )
-        .map_err(|e| e.to_string())?;
+        .map_err(|e| w.err(e))?;
     }
-    w.flush().map_err(|e| e.to_string())
+    w.commit()
 }

@@ -13,7 +13,7 @@ pub fn run(out: &Path) -> Result<String, String> {
     std::fs::create_dir_all(out).map_err(|e| format!("{}: {e}", out.display()))?;
     for (name, text) in [("stability.csv", &csv), ("stability.md", &md)] {
         let p = out.join(name);
-        std::fs::write(&p, text).map_err(|e| format!("{}: {e}", p.display()))?;
+        crate::out_file::write_file(&p, text)?;
     }
     Ok(md)
 }

@@ -178,33 +178,84 @@ pub fn load_area(given: Option<&Path>) -> Result<HashMap<String, Area>, String> 
     }
 }
 
-/// Reads a synthesis CSV (header `module,latency,generic_cells,ice40_lut4,ice40_carry,ice40_ff,
-/// ice40_depth,xilinx_lut,xilinx_dsp,...`; repeated header lines are skipped; a later row of a module
-/// replaces an earlier one).
+/// The columns of a synthesis CSV (`scripts/synth` writes them all); the first six are required.
+const AREA_COLUMNS: [&str; 11] = [
+    "module",
+    "latency",
+    "ice40_lut4",
+    "ice40_depth",
+    "xilinx_lut",
+    "xilinx_dsp",
+    "generic_cells",
+    "ice40_carry",
+    "ice40_ff",
+    "xilinx_ff",
+    "ice40_stage_depth",
+];
+
+/// Reads a synthesis CSV: a header line naming its columns ([`AREA_COLUMNS`], any order, each once), then
+/// one row per module. Rows of several runs may be concatenated: a later header line (one with a `module`
+/// cell) names the columns of the rows after it, and a later row of a module replaces an earlier
+/// one. A leading byte-order mark is skipped. An unknown or repeated column, a missing required one, a
+/// row with the wrong number of cells or a cell that is not a count is an error naming the file, the line
+/// and the column.
 pub fn read_area(path: &Path) -> Result<HashMap<String, Area>, String> {
-    let text = std::fs::read_to_string(path).map_err(|e| format!("{}: {e}", path.display()))?;
+    let text = std::fs::read_to_string(path)
+        .map_err(|e| format!("{}: cannot read the area table: {e}", path.display()))?;
     let mut t = HashMap::new();
-    for (n, line) in text.lines().enumerate() {
+    let mut cols: Option<Vec<String>> = None;
+    for (n, line) in golden::text::strip_bom(&text).lines().enumerate() {
+        let bad = |what: String| format!("{}:{}: {what}", path.display(), n + 1);
         let f: Vec<&str> = line.split(',').map(str::trim).collect();
-        if line.trim().is_empty() || f[0] == "module" {
+        if line.trim().is_empty() {
             continue;
         }
-        let bad = |what: &str| format!("{}:{}: {what}", path.display(), n + 1);
-        if f.len() < 9 {
-            return Err(bad("expected at least 9 comma-separated fields"));
+        if cols.is_none() || f.contains(&"module") {
+            for (i, c) in f.iter().enumerate() {
+                if f[..i].contains(c) {
+                    return Err(bad(format!("column `{c}` named twice in the header")));
+                }
+                if !AREA_COLUMNS.contains(c) {
+                    return Err(bad(format!(
+                        "column `{c}`: {}",
+                        golden::text::unknown_field(c, &AREA_COLUMNS)
+                    )));
+                }
+            }
+            if let Some(c) = AREA_COLUMNS[..6].iter().find(|c| !f.contains(c)) {
+                return Err(bad(format!("column `{c}` missing from the header")));
+            }
+            cols = Some(f.iter().map(|c| c.to_string()).collect());
+            continue;
         }
-        let num = |i: usize| -> Result<u64, String> {
+        let cols = cols.as_ref().expect("the first line is the header");
+        if f.len() != cols.len() {
+            return Err(bad(format!(
+                "{} cells, but the header has {}",
+                f.len(),
+                cols.len()
+            )));
+        }
+        let num = |name: &str| -> Result<u64, String> {
+            let i = cols
+                .iter()
+                .position(|c| c == name)
+                .expect("a required column");
             f[i].parse::<u64>()
-                .map_err(|_| bad(&format!("field {} = `{}` is not a count", i + 1, f[i])))
+                .map_err(|_| bad(format!("column `{name}`: `{}` is not a count", f[i])))
         };
         t.insert(
-            f[0].to_string(),
+            f[cols
+                .iter()
+                .position(|c| c == "module")
+                .expect("module column")]
+            .to_string(),
             Area {
-                latency: num(1)? as usize,
-                ice40_lut4: num(3)?,
-                ice40_depth: num(6)?,
-                xilinx_lut: num(7)?,
-                xilinx_dsp: num(8)?,
+                latency: num("latency")? as usize,
+                ice40_lut4: num("ice40_lut4")?,
+                ice40_depth: num("ice40_depth")?,
+                xilinx_lut: num("xilinx_lut")?,
+                xilinx_dsp: num("xilinx_dsp")?,
             },
         );
     }
@@ -706,7 +757,7 @@ pub fn report(recs: &[Rec], out: &Path, diag: &HashMap<String, f64>) -> Result<S
             )?;
         }
     }
-    std::fs::write(out.join("sweep.csv"), &csv).map_err(|e| e.to_string())?;
+    crate::out_file::write_file(&out.join("sweep.csv"), &csv)?;
     let missing: Vec<String> = {
         let mut m: Vec<String> = recs
             .iter()
@@ -725,7 +776,7 @@ pub fn report(recs: &[Rec], out: &Path, diag: &HashMap<String, f64>) -> Result<S
             missing.join(", ")
         );
     }
-    std::fs::write(out.join("sweep.md"), &md).map_err(|e| e.to_string())?;
+    crate::out_file::write_file(&out.join("sweep.md"), &md)?;
     Ok(md)
 }
 
@@ -768,15 +819,51 @@ mod tests {
         let dir = std::env::temp_dir().join(format!("rtu-area-{}", std::process::id()));
         std::fs::create_dir_all(&dir).unwrap();
         let p = dir.join("a.csv");
+        let h = "module,latency,generic_cells,ice40_lut4,ice40_carry,ice40_ff,ice40_depth,xilinx_lut,xilinx_dsp";
+        // Two runs concatenated, the second with its columns in another order and a byte-order mark.
         std::fs::write(
             &p,
-            "module,latency,generic_cells,ice40_lut4,ice40_carry,ice40_ff,ice40_depth,xilinx_lut,xilinx_dsp\nm,4,1,100,0,0,9,50,2\nmodule,latency\nm,4,1,120,0,0,9,60,2\n",
+            format!("\u{feff}{h}\nm,4,1,100,0,0,9,50,2\n\nmodule,ice40_lut4,latency,ice40_depth,xilinx_lut,xilinx_dsp\nm,120,5,9,60,2\n"),
         )
         .unwrap();
         let t = read_area(&p).unwrap();
-        assert_eq!(t["m"].ice40_lut4, 120);
-        std::fs::write(&p, "m,4,1,x,0,0,9,50,2\n").unwrap();
-        let e = read_area(&p).unwrap_err();
-        assert!(e.contains("a.csv:1") && e.contains("`x`"), "{e}");
+        assert_eq!((t["m"].ice40_lut4, t["m"].latency), (120, 5));
+        std::fs::write(
+            &p,
+            "latency,module,ice40_lut4,ice40_depth,xilinx_lut,xilinx_dsp\n3,q,1,2,3,4\n",
+        )
+        .unwrap();
+        assert_eq!(read_area(&p).unwrap()["q"].latency, 3);
+        for (text, want) in [
+            (
+                format!("{h}\nm,4,1,x,0,0,9,50,2\n"),
+                "a.csv:2: column `ice40_lut4`: `x` is not a count",
+            ),
+            (
+                "m,4,1,1,0,0,9,50,2\n".to_string(),
+                "a.csv:1: column `m`: unknown field",
+            ),
+            (
+                format!("{h},lut\nm,4,1,1,0,0,9,50,2,3\n"),
+                "a.csv:1: column `lut`: unknown field",
+            ),
+            (
+                format!("{h},latency\n"),
+                "a.csv:1: column `latency` named twice",
+            ),
+            (
+                "module,latency,ice40_lut4\n".to_string(),
+                "a.csv:1: column `ice40_depth` missing",
+            ),
+            (
+                format!("{h}\nm,4,1,1,0,0,9,50\n"),
+                "a.csv:2: 8 cells, but the header has 9",
+            ),
+        ] {
+            std::fs::write(&p, &text).unwrap();
+            let e = read_area(&p).unwrap_err();
+            assert!(e.contains(want), "{text}: {e}");
+        }
+        std::fs::remove_dir_all(&dir).unwrap();
     }
 }
