@@ -36,6 +36,25 @@ impl Ext {
         Ext::Fin(dyadic(m, e))
     }
 
+    /// The largest f64 `<= self`: `-inf` stays `-inf`, and a finite value above the largest finite f64
+    /// gives that, not `+inf` (the directed rounding of an interval's lower end).
+    pub fn down_f64(&self) -> f64 {
+        match self {
+            Ext::NegInf => f64::NEG_INFINITY,
+            Ext::PosInf => f64::INFINITY,
+            Ext::Fin(r) => round_down(r),
+        }
+    }
+
+    /// The smallest f64 `>= self` (the directed rounding of an interval's upper end).
+    pub fn up_f64(&self) -> f64 {
+        match self {
+            Ext::NegInf => f64::NEG_INFINITY,
+            Ext::PosInf => f64::INFINITY,
+            Ext::Fin(r) => round_up(r),
+        }
+    }
+
     /// The nearest f64 (for printing and CSV output only).
     pub fn to_f64(&self) -> f64 {
         match self {
@@ -70,6 +89,32 @@ impl Ord for Ext {
 /// Exact rational of a finite f64.
 pub fn rat(x: f64) -> BigRational {
     BigRational::from_float(x).expect("finite f64")
+}
+
+/// The largest f64 `<= r`; beyond the f64 range `-inf` below and the largest finite f64 above.
+pub fn round_down(r: &BigRational) -> f64 {
+    use num_traits::ToPrimitive;
+    let x = r.to_f64().unwrap_or(f64::NAN);
+    if x.is_nan() {
+        return if r.is_negative() {
+            f64::NEG_INFINITY
+        } else {
+            f64::MAX
+        };
+    }
+    if x.is_infinite() {
+        return if x > 0.0 { f64::MAX } else { f64::NEG_INFINITY };
+    }
+    if &rat(x) > r {
+        x.next_down()
+    } else {
+        x
+    }
+}
+
+/// The smallest f64 `>= r`; beyond the f64 range `+inf` above and the most negative finite f64 below.
+pub fn round_up(r: &BigRational) -> f64 {
+    -round_down(&-r)
 }
 
 /// `m * 2^e` as an exact rational.

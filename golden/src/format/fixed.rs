@@ -275,14 +275,36 @@ impl FixRay {
             Ext::dyadic(code, self.t_exp)
         }
     }
-    /// The same as an f64 (exact unless the exponent leaves f64's range).
-    pub fn t_world_f64(&self, fmt: &FixFormat, code: i64) -> f64 {
+    /// An entry code in world units as an f64, rounded down: never above the exact value, and the
+    /// largest finite f64 (not `+inf`) when the exact value lies beyond it. Exact whenever f64 holds it.
+    pub fn t_entry_f64(&self, fmt: &FixFormat, code: i64) -> f64 {
+        self.t_f64(fmt, code, false)
+    }
+
+    /// An exit code in world units as an f64, rounded up: never below the exact value, and the most
+    /// negative finite f64 (not `-inf`) when the exact value lies below it.
+    pub fn t_exit_f64(&self, fmt: &FixFormat, code: i64) -> f64 {
+        self.t_f64(fmt, code, true)
+    }
+
+    fn t_f64(&self, fmt: &FixFormat, code: i64, up: bool) -> f64 {
         if code == fmt.t_neg_inf() {
-            f64::NEG_INFINITY
-        } else if code == fmt.t_pos_inf() {
-            f64::INFINITY
+            return f64::NEG_INFINITY;
+        }
+        if code == fmt.t_pos_inf() {
+            return f64::INFINITY;
+        }
+        // Exact when the product is zero or a normal f64 (t codes have fewer than 53 bits); otherwise
+        // (overflow, or rounding among the subnormals) round the exact value outward.
+        let x = ldexp(code as f64, self.t_exp);
+        if code.unsigned_abs() < 1 << 53 && (x.is_normal() || code == 0) {
+            return x;
+        }
+        let e = Ext::dyadic(code, self.t_exp);
+        if up {
+            e.up_f64()
         } else {
-            ldexp(code as f64, self.t_exp)
+            e.down_f64()
         }
     }
 }
@@ -547,6 +569,52 @@ pub fn ceil_pow2(x: f64, e: i32) -> Option<i64> {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    /// t codes whose world value lies beyond the f64 range, or among the subnormals, round outward: an
+    /// entry never above the exact value (the largest finite f64, not `+inf`), an exit never below it.
+    #[test]
+    fn t_codes_convert_to_world_outward() {
+        let fmt = FixFormat::b16();
+        for (code, t_exp) in [
+            (3, 1074),
+            (-3, 1074),
+            (5, -1076),
+            (-5, -1076),
+            (1, 1023),
+            (7, -1080),
+        ] {
+            let r = FixRay {
+                t_exp,
+                ..FixRay::default()
+            };
+            let exact = r.t_world(&fmt, code);
+            let (lo, hi) = (r.t_entry_f64(&fmt, code), r.t_exit_f64(&fmt, code));
+            assert!(
+                Ext::from_f64(lo) <= exact && exact <= Ext::from_f64(hi),
+                "{code} 2^{t_exp}"
+            );
+            assert!(!lo.is_nan() && !hi.is_nan() && lo != f64::INFINITY && hi != f64::NEG_INFINITY);
+            if lo.is_finite() && hi.is_finite() && lo != hi {
+                assert_eq!(lo.next_up(), hi, "{code} 2^{t_exp}: the neighbouring f64s");
+            }
+        }
+        let r = FixRay {
+            t_exp: 1074,
+            ..FixRay::default()
+        };
+        assert_eq!(r.t_entry_f64(&fmt, 3), f64::MAX);
+        assert_eq!(r.t_exit_f64(&fmt, -3), -f64::MAX);
+        assert_eq!(r.t_entry_f64(&fmt, fmt.t_pos_inf()), f64::INFINITY);
+        assert_eq!(r.t_exit_f64(&fmt, fmt.t_neg_inf()), f64::NEG_INFINITY);
+        let r = FixRay {
+            t_exp: -2,
+            ..FixRay::default()
+        };
+        assert_eq!(
+            (r.t_entry_f64(&fmt, 5), r.t_exit_f64(&fmt, 5)),
+            (1.25, 1.25)
+        );
+    }
 
     fn map(fmt: FixFormat) -> GridMap {
         GridMap::for_bounds(fmt, DVec3::splat(-100.0), DVec3::splat(100.0)).unwrap()

@@ -120,8 +120,8 @@ impl NodeTester for FixTester {
         let out = plane_fix::node_fix(&self.cf, self.k, &r, &self.nodes[node]);
         out.hit.then(|| {
             (
-                r.ray.t_world_f64(&self.cf.base, out.t_entry),
-                r.ray.t_world_f64(&self.cf.base, out.t_exit),
+                r.ray.t_entry_f64(&self.cf.base, out.t_entry),
+                r.ray.t_exit_f64(&self.cf.base, out.t_exit),
             )
         })
     }

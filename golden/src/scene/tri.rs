@@ -35,7 +35,7 @@ use crate::geom::Ray;
 use glam::DVec3;
 use num_bigint::BigInt;
 use num_rational::BigRational;
-use num_traits::{One, Signed, ToPrimitive, Zero};
+use num_traits::{One, Signed, Zero};
 use rand::Rng;
 use std::cmp::Ordering;
 
@@ -392,30 +392,7 @@ pub fn tri_hit(ray: &Ray, tri: &Triangle) -> Option<BigRational> {
 // ---------------------------------------------------------------------------------------------------
 // Rounding exact values to f64.
 
-/// The largest f64 `<= r` (`r` must be within the f64 range; beyond it the result is `-inf`/`MAX`).
-pub fn round_down(r: &BigRational) -> f64 {
-    let x = r.to_f64().unwrap_or(f64::NAN);
-    if x.is_nan() {
-        return if r.is_negative() {
-            f64::NEG_INFINITY
-        } else {
-            f64::MAX
-        };
-    }
-    if x.is_infinite() {
-        return if x > 0.0 { f64::MAX } else { f64::NEG_INFINITY };
-    }
-    if &crate::exact::rat(x) > r {
-        x.next_down()
-    } else {
-        x
-    }
-}
-
-/// The smallest f64 `>= r` (beyond the f64 range: `+inf`/`-MAX`).
-pub fn round_up(r: &BigRational) -> f64 {
-    -round_down(&-r)
-}
+pub use crate::exact::{round_down, round_up};
 
 // ---------------------------------------------------------------------------------------------------
 // Random triangles and rays (for tests and benchmarks).

@@ -122,8 +122,8 @@ mod tests {
         let (fmt, r, b) = setup([-4.0, 0.5, 0.5], [1.0, 0.0, 0.0], [0.0; 3], [1.0; 3]);
         let out = slab_fix(&fmt, &r, &b);
         assert!(out.hit);
-        assert_eq!(r.t_world_f64(&fmt, out.t_entry), 4.0);
-        assert_eq!(r.t_world_f64(&fmt, out.t_exit), 5.0);
+        assert_eq!(r.t_entry_f64(&fmt, out.t_entry), 4.0);
+        assert_eq!(r.t_exit_f64(&fmt, out.t_exit), 5.0);
     }
 
     #[test]

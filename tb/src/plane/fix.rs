@@ -69,8 +69,8 @@ impl SlabCtx for CullFixCtx {
         let f = &self.cf.base;
         (
             o.hit,
-            r.ray.t_world_f64(f, o.t_entry),
-            r.ray.t_world_f64(f, o.t_exit),
+            r.ray.t_entry_f64(f, o.t_entry),
+            r.ray.t_exit_f64(f, o.t_exit),
         )
     }
     fn judge(&self, r: &NodeFixRay, o: &PlaneFixOut, exact: &ExactHit) -> Verdict {
@@ -119,10 +119,9 @@ pub fn fix_case(
 }
 
 /// A node test with every field uniform over its code range: the RTL must match the model on all inputs.
-pub fn raw_node_fix(cf: &CullFixFormat, rng: &mut Pcg64) -> (NodeFixRay, FixNode) {
+pub fn raw_node_fix<R: Rng>(cf: &CullFixFormat, rng: &mut R) -> (NodeFixRay, FixNode) {
     let (ray, b) = crate::campaign::raw_fix_vector(&cf.base, rng);
-    let d =
-        |rng: &mut Pcg64| rng.gen_range(-(1i64 << (cf.d_bits() - 1))..(1i64 << (cf.d_bits() - 1)));
+    let d = |rng: &mut R| rng.gen_range(-(1i64 << (cf.d_bits() - 1))..(1i64 << (cf.d_bits() - 1)));
     let mut r = NodeFixRay {
         ray,
         ..Default::default()

@@ -84,8 +84,8 @@ impl SlabCtx for FixFormat {
     fn world(&self, r: &FixRay, o: &SlabFixOut) -> (bool, f64, f64) {
         (
             o.hit,
-            r.t_world_f64(self, o.t_entry),
-            r.t_world_f64(self, o.t_exit),
+            r.t_entry_f64(self, o.t_entry),
+            r.t_exit_f64(self, o.t_exit),
         )
     }
     fn judge(
