@@ -243,6 +243,72 @@ fn conversion_from_f64_is_correctly_rounded() {
     }
 }
 
+/// Exact ties, which random f64 inputs never produce: the midpoint of every pair of neighbouring finite
+/// values of E4M3 (and a sample of pairs of the wider formats, every binade and the subnormals), both
+/// signs. Round to nearest gives the neighbour with the even significand, toward -inf the lower and toward
+/// +inf the upper; the midpoint between the largest finite value and the next power of two overflows to
+/// infinity under round to nearest (IEEE 754, 7.4) and stays at the largest finite value downward.
+#[test]
+fn conversion_from_f64_rounds_ties_to_even() {
+    let mut rng = Pcg64::seed_from_u64(78);
+    for f in [
+        FloatFormat::FP32,
+        FloatFormat::BF16,
+        FloatFormat::FP16,
+        FloatFormat::E4M3,
+    ] {
+        let top = f.max_finite(false);
+        let all: Vec<u32> = if f.width() <= 8 {
+            (0..top).collect()
+        } else {
+            (0..20_000).map(|_| rng.gen_range(0..top)).collect()
+        };
+        let mut ties = [0usize; 2];
+        for d in all {
+            let u = f.next_up(d);
+            let (dv, uv) = (f.to_f64(d), f.to_f64(u));
+            let x = dv + (uv - dv) / 2.0;
+            assert!(
+                dv < x && x < uv,
+                "{} {d:#x}: midpoint exact in f64",
+                f.name()
+            );
+            for (x, lo, hi) in [(x, d, u), (-x, u | f.sign_bit(), d | f.sign_bit())] {
+                let even = if lo & 1 == 0 { lo } else { hi };
+                let name = f.name();
+                assert_eq!(
+                    f.from_f64(x, Rounding::NearestEven),
+                    even,
+                    "{name} tie {x:e}"
+                );
+                assert_eq!(f.from_f64(x, Rounding::Down), lo, "{name} tie {x:e} down");
+                assert_eq!(f.from_f64(x, Rounding::Up), hi, "{name} tie {x:e} up");
+                ties[usize::from(even == hi)] += 1;
+            }
+        }
+        // Both outcomes occur: the check can tell ties-to-even from ties-up or ties-down.
+        assert!(ties[0] > 0 && ties[1] > 0, "{}: {ties:?}", f.name());
+        let max = f.to_f64(top);
+        let half_ulp = (max - f.to_f64(top - 1)) / 2.0;
+        for (s, sign) in [(1.0, false), (-1.0, true)] {
+            let x = s * (max + half_ulp);
+            assert_eq!(
+                f.from_f64(x, Rounding::NearestEven),
+                f.inf(sign),
+                "{} {x:e}",
+                f.name()
+            );
+            let toward_zero = if sign { Rounding::Up } else { Rounding::Down };
+            assert_eq!(
+                f.from_f64(x, toward_zero),
+                f.max_finite(sign),
+                "{} {x:e}",
+                f.name()
+            );
+        }
+    }
+}
+
 #[test]
 fn comparisons_and_min_max_follow_ieee_on_specials_and_randoms() {
     let f = FloatFormat::FP16;

@@ -152,7 +152,7 @@ fn plane_float_engines_agree_on_user_vectors() {
     let ctx = CullFloatCtx::new(CullFloatFormat::over(FloatFormat::FP16), 2);
     let vs = vectors(6, 2_000, 2);
     let dir = tb::out_dir().join("verilator");
-    let res = all_engines(&[Engine::Model, Engine::Rtl], |e| {
+    let res = all_engines(&[Engine::Model, Engine::Rtl, Engine::Verilator], |e| {
         let tests: Vec<_> = vs
             .iter()
             .filter_map(|v| float_vector(&ctx.cf, v).ok().map(|(r, n)| (v.tag, r, n)))
@@ -166,7 +166,9 @@ fn plane_float_engines_agree_on_user_vectors() {
         out
     });
     assert!(res[0].len() > 1_500, "{}", res[0].len());
+    assert!(res[0].iter().any(|x| !x.1 .0) && res[0].iter().any(|x| x.1 .0));
     assert_eq!(res[0], res[1], "model vs rust-hdl");
+    assert_eq!(res[0], res[2], "model vs Verilator");
 }
 
 #[test]

@@ -43,29 +43,36 @@ fn check<S: SlabFloatIo>(seed: u64) {
     );
 }
 
-#[test]
-fn e8m23() {
-    check::<rtl::SlabFloatE8M23>(1);
-}
-#[test]
-fn e8m15() {
-    check::<rtl::SlabFloatE8M15>(2);
-}
-#[test]
-fn e8m7() {
-    check::<rtl::SlabFloatE8M7>(3);
-}
-#[test]
-fn e5m10() {
-    check::<rtl::SlabFloatE5M10>(4);
-}
-#[test]
-fn e6m5() {
-    check::<rtl::SlabFloatE6M5>(5);
+/// One test per instantiated float slab tester, and the list of what they run.
+macro_rules! per_format {
+    ($($name:ident: $t:ty = $seed:literal),* $(,)?) => {
+        $(#[test]
+        fn $name() {
+            check::<$t>($seed);
+        })*
+        /// The formats the tests above run, in order.
+        fn tested() -> Vec<FloatFormat> {
+            vec![$(<$t as SlabFloatIo>::format()),*]
+        }
+    };
 }
 
+per_format! {
+    e8m23: rtl::SlabFloatE8M23 = 1,
+    e8m15: rtl::SlabFloatE8M15 = 2,
+    e8m7: rtl::SlabFloatE8M7 = 3,
+    e5m10: rtl::SlabFloatE5M10 = 4,
+    e6m5: rtl::SlabFloatE6M5 = 5,
+}
+
+/// The tests above run exactly the formats the registry instantiates (`rtl::SLAB_FLOAT_FORMATS`), each
+/// once, and the registry's dispatch of each format reaches the block the test ran for it.
 #[test]
 fn every_instantiated_format_is_covered() {
-    assert_eq!(rtl::SLAB_FLOAT_FORMATS.len(), 5);
-    let _: FloatFormat = rtl::SLAB_FLOAT_FORMATS[0];
+    let run = tested();
+    assert_eq!(run, rtl::SLAB_FLOAT_FORMATS.to_vec());
+    for f in &run {
+        let reached = rtl::with_slab_float!(f, S, { S::format() }).unwrap();
+        assert_eq!(reached, *f);
+    }
 }
