@@ -29,13 +29,13 @@ pub fn world_gen(map: &GridMap, kind: GenKind, seed: u64) -> SlabGen {
 
 /// A quantised vector with every field uniform over its code range (including codes that quantisation
 /// never produces, such as `m_lo > m_hi`): the RTL must match the model on all inputs.
-pub fn raw_fix_vector(fmt: &FixFormat, rng: &mut Pcg64) -> (FixRay, FixBox) {
-    let g = |rng: &mut Pcg64| rng.gen_range(fmt.gmin()..=fmt.gmax());
-    let m = |rng: &mut Pcg64| match rng.gen_range(0..8) {
+pub fn raw_fix_vector<R: Rng>(fmt: &FixFormat, rng: &mut R) -> (FixRay, FixBox) {
+    let g = |rng: &mut R| rng.gen_range(fmt.gmin()..=fmt.gmax());
+    let m = |rng: &mut R| match rng.gen_range(0..8) {
         0 => fmt.inv_inf(),
         _ => rng.gen_range(0..=fmt.inv_inf()),
     };
-    let t = |rng: &mut Pcg64| rng.gen_range(fmt.t_neg_inf()..=fmt.t_pos_inf());
+    let t = |rng: &mut R| rng.gen_range(fmt.t_neg_inf()..=fmt.t_pos_inf());
     let mut r = FixRay::default();
     let mut b = FixBox::default();
     for a in 0..3 {
@@ -103,9 +103,9 @@ pub fn slab_vectors(
 }
 
 /// A float vector with every field any pattern of the format (NaN included), specials weighted up.
-pub fn raw_float_vector(
+pub fn raw_float_vector<R: Rng>(
     f: &golden::format::float::FloatFormat,
-    rng: &mut Pcg64,
+    rng: &mut R,
 ) -> (golden::slab::float::FloatRay, golden::slab::float::FloatBox) {
     let specials = f.specials();
     let mut x = || {

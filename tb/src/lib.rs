@@ -13,6 +13,7 @@
 //! | [`bundle::split`] | the results processor's driver, clock-by-clock stimulus, checker and cross-simulation |
 //! | [`engine`] | one streaming call over the model, the rust-hdl simulation and Verilator |
 //! | [`dut`] | the [`dut::PipelinedDut`] trait and a stream runner that checks results, tag order and latency |
+//! | [`prop`] | proptest with shrinking and a VCD of the shrunk case for blocks with a random raw-input generator |
 //! | [`rtl_sim`] | drives a rust-hdl block cycle by cycle (the fast direct loop), with optional VCD |
 //! | [`vcd_read`] | reads a VCD back and measures when `valid` leaves a block |
 //! | [`verilog_tools`] | Verilator lint and Icarus on exported Verilog |
@@ -24,6 +25,7 @@ pub mod campaign;
 pub mod dut;
 pub mod engine;
 pub mod plane;
+pub mod prop;
 pub mod rtl_sim;
 pub mod slab;
 pub mod vcd_read;

@@ -45,18 +45,18 @@ pub fn point_of(b: &FixBundle) -> FixBundle {
 /// A test with every code drawn over its range (origins, boxes and t codes of either sign and order,
 /// `+-inf` t codes weighted up; direction codes within the quantiser's `[-2^(FD+1), 2^(FD+1)]`, ends
 /// weighted up): the RTL must match the model on all of them.
-pub fn raw_bundle(bf: &BundleFixFormat, rng: &mut Pcg64) -> BundleVec {
+pub fn raw_bundle<R: Rng>(bf: &BundleFixFormat, rng: &mut R) -> BundleVec {
     let fmt = &bf.base;
     let (r, inner) = raw_fix_vector(fmt, rng);
     let (_, outer) = raw_fix_vector(fmt, rng);
     let dm = 1i64 << (bf.fd + 1);
-    let d = |rng: &mut Pcg64| match rng.gen_range(0..8) {
+    let d = |rng: &mut R| match rng.gen_range(0..8) {
         0 => -dm,
         1 => dm,
         2 => 0,
         _ => rng.gen_range(-dm..=dm),
     };
-    let t = |rng: &mut Pcg64| match rng.gen_range(0..8) {
+    let t = |rng: &mut R| match rng.gen_range(0..8) {
         0 => fmt.t_pos_inf(),
         1 => fmt.t_neg_inf(),
         2 => 0,

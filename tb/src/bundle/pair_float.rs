@@ -48,7 +48,7 @@ pub fn quantised(
 
 /// A pattern of `f`: one of its specials (zeros, subnormals, one, the largest finite, infinities, NaN
 /// and neighbours) one time in four, else any pattern (NaN included).
-fn raw_code(f: &FloatFormat, specials: &[u32], rng: &mut Pcg64) -> u32 {
+fn raw_code<R: Rng>(f: &FloatFormat, specials: &[u32], rng: &mut R) -> u32 {
     if rng.gen_ratio(1, 4) {
         specials[rng.gen_range(0..specials.len())]
     } else {
@@ -59,7 +59,7 @@ fn raw_code(f: &FloatFormat, specials: &[u32], rng: &mut Pcg64) -> u32 {
 /// A bundle with every field any pattern of `f` (specials weighted up; ends equal one time in four, so
 /// zero-width intervals and their special values occur): the RTL must match the model on all of them,
 /// NaN and infinities included (the model is defined on every pattern).
-pub fn raw_float_bundle(f: &FloatFormat, rng: &mut Pcg64) -> FloatBundle {
+pub fn raw_float_bundle<R: Rng>(f: &FloatFormat, rng: &mut R) -> FloatBundle {
     let sp = f.specials();
     let mut b = FloatBundle::default();
     for a in 0..3 {
@@ -83,9 +83,9 @@ pub fn raw_float_bundle(f: &FloatFormat, rng: &mut Pcg64) -> FloatBundle {
 
 /// A raw test: a [`raw_float_bundle`] (or two) and raw boxes (the outer box equal to the inner one half
 /// of the time).
-pub fn raw_float_vec(f: &FloatFormat, rng: &mut Pcg64) -> FloatBundleVec {
+pub fn raw_float_vec<R: Rng>(f: &FloatFormat, rng: &mut R) -> FloatBundleVec {
     let sp = f.specials();
-    let bx = |rng: &mut Pcg64| {
+    let bx = |rng: &mut R| {
         let mut b = FloatBox::default();
         for a in 0..3 {
             b.lo[a] = raw_code(f, &sp, rng);

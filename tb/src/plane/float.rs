@@ -76,7 +76,7 @@ impl SlabCtx for CullFloatCtx {
 }
 
 /// A float pattern: a special of the format one time in four, else any pattern.
-fn code(cf: &CullFloatFormat, specials: &[u32], rng: &mut Pcg64) -> u32 {
+fn code<R: Rng>(cf: &CullFloatFormat, specials: &[u32], rng: &mut R) -> u32 {
     if rng.gen_bool(0.25) {
         specials[rng.gen_range(0..specials.len())]
     } else {
@@ -85,7 +85,7 @@ fn code(cf: &CullFloatFormat, specials: &[u32], rng: &mut Pcg64) -> u32 {
 }
 
 /// A node test with every field any pattern of the format (NaN included), `k` planes.
-pub fn raw_node(cf: &CullFloatFormat, k: usize, rng: &mut Pcg64) -> (NodeFloatRay, FloatNode) {
+pub fn raw_node<R: Rng>(cf: &CullFloatFormat, k: usize, rng: &mut R) -> (NodeFloatRay, FloatNode) {
     let sp = cf.f.specials();
     let mut r = NodeFloatRay::default();
     let mut n = FloatNode::default();

@@ -4,4 +4,5 @@
 
 mod pair_fix;
 mod pair_float;
+mod shrinking;
 mod split;

@@ -7,4 +7,5 @@ mod float_equivalence;
 mod float_vcd;
 mod float_verilog;
 mod quot;
+mod shrinking;
 mod vectors;

@@ -29,9 +29,12 @@ fn equivalence<S: SlabFixIo>(
         ..Config::default()
     });
     let result = runner.run(&slab_burst(fmt), |burst| {
-        run_checked(&mut *dut.borrow_mut(), burst, |v| model(&fmt, v))
-            .map(|_| ())
-            .map_err(|m| TestCaseError::fail(m.to_string()))
+        let r = run_checked(&mut *dut.borrow_mut(), burst, |v| model(&fmt, v));
+        r.map(|_| ()).map_err(|m| {
+            // Results of the failed burst are still in the pipeline: shrink on a fresh block.
+            *dut.borrow_mut() = SlabFixRtl::<S>::new(&fmt);
+            TestCaseError::fail(m.to_string())
+        })
     });
     if let Err(TestError::Fail(why, burst)) = result {
         let path = write_failure_vcd::<S>(fmt, name, &burst);

@@ -1,0 +1,104 @@
+//! proptest with shrinking for the bundle pairs, fixed and float (`tb::prop`): bursts of raw tests (a
+//! bundle or two rays and a box pair, every code over its range, float NaN and infinities included) with
+//! bubbles, rust-hdl against the model; a failing burst is shrunk and written as a VCD. A wrong model is
+//! caught, and the failure leaves its waveform.
+
+use golden::bundle::fix::BundleFixFormat;
+use golden::format::float::FloatFormat;
+use rtl::bundle::pair_float::BundleFloatIo;
+use tb::bundle::pair_fix::{bundle_model, bundle_rtl, raw_bundle};
+use tb::bundle::pair_float::{bundle_float_model, bundle_float_rtl, raw_float_vec};
+use tb::plane::float::with_big_stack;
+use tb::prop::shrinking_equivalence;
+
+const CASES: u32 = 1_500;
+const WORDS: usize = 160;
+
+/// The mutation of a wrong model: AllHit and AnyHit's answers exchanged.
+fn swap((h, m): (bool, bool), wrong: bool) -> (bool, bool) {
+    if wrong {
+        (m, h)
+    } else {
+        (h, m)
+    }
+}
+
+fn pair_fix_b12(name: &'static str, wrong: bool) {
+    // rust-hdl's simulation and VCD writer recurse deeply: run on a big stack.
+    with_big_stack(move || pair_fix_b12_run(name, wrong))
+}
+
+fn pair_fix_b12_run(name: &str, wrong: bool) {
+    let bf = BundleFixFormat::presets()[1];
+    shrinking_equivalence(
+        name,
+        CASES,
+        WORDS,
+        |vcd| {
+            let d = bundle_rtl::<rtl::BundleFixB12>(&bf);
+            match vcd {
+                Some(p) => d.vcd_to(p).expect("VCD"),
+                None => d,
+            }
+        },
+        |t| raw_bundle(&bf, t),
+        |v| swap(bundle_model(&bf, v), wrong),
+    );
+}
+
+fn pair_float_fp16(name: &'static str, wrong: bool) {
+    with_big_stack(move || {
+        type S = rtl::BundleFloatFp16;
+        let f = S::format();
+        assert_eq!(f, FloatFormat::FP16);
+        shrinking_equivalence(
+            name,
+            CASES,
+            WORDS,
+            |vcd| {
+                let d = bundle_float_rtl::<S>();
+                match vcd {
+                    Some(p) => d.vcd_to(p).expect("VCD"),
+                    None => d,
+                }
+            },
+            |t| raw_float_vec(&f, t),
+            |v| swap(bundle_float_model(&f, v), wrong),
+        )
+    })
+}
+
+#[test]
+fn pair_fix_b12_matches_model_shrinking() {
+    assert_eq!(
+        BundleFixFormat::presets()[1].base,
+        golden::format::fixed::FixFormat::b12()
+    );
+    pair_fix_b12("bundle_fix_b12", false);
+}
+
+#[test]
+fn pair_float_fp16_matches_model_shrinking() {
+    pair_float_fp16("bundle_float_fp16", false);
+}
+
+#[test]
+fn a_wrong_model_is_caught_shrunk_and_leaves_a_vcd() {
+    for run in [
+        Box::new(|| pair_fix_b12("bundle_fix_b12_wrong_model", true))
+            as Box<dyn FnOnce() + std::panic::UnwindSafe>,
+        Box::new(|| pair_float_fp16("bundle_float_fp16_wrong_model", true)),
+    ] {
+        let msg = match std::panic::catch_unwind(run) {
+            Ok(()) => panic!("a wrong model passed"),
+            Err(e) => e.downcast_ref::<String>().cloned().unwrap_or_default(),
+        };
+        let vcd = std::path::PathBuf::from(msg.rsplit("waveform: ").next().unwrap().trim());
+        assert!(vcd.exists(), "no VCD at {}: {msg}", vcd.display());
+        assert!(std::fs::read_to_string(&vcd).unwrap().contains("valid_out"));
+        assert!(
+            msg.contains("shrunk burst") && msg.contains("test #0"),
+            "{msg}"
+        );
+    }
+}
