@@ -55,15 +55,28 @@ fn range_check(t: &str, x: f64) -> Result<(), String> {
     Ok(())
 }
 
-/// Checks every number literal of one JSON text against the range rule of [`parse_f64`] (serde_json reads
-/// `1e-400` as 0 and refuses `1e400` with a message that does not say why). Literals that are not numbers
-/// are left to the JSON parser. On a number out of range, returns the key it belongs to (the innermost
-/// `"key":` before it, `(line)` when none) and the reason.
+/// Checks one JSON text for what serde_json lets pass silently: every number literal against the range
+/// rule of [`parse_f64`] (serde_json reads `1e-400` as 0, and refuses `1e400` with a message that does not
+/// say why), and keys given twice in one object (serde_json keeps the last). Literals that are not numbers
+/// and malformed text are left to the JSON parser. On a failure, returns the key concerned (for a number
+/// the innermost `"key":` before it, `(line)` when none) and the reason.
 pub fn check_json_numbers(text: &str) -> Result<(), (String, String)> {
     let b = text.as_bytes();
     let (mut i, mut key, mut last_str) = (0, String::from("(line)"), None::<(usize, usize)>);
+    // The keys seen in each open object, innermost last.
+    let mut objects: Vec<Vec<String>> = vec![];
     while i < b.len() {
         match b[i] {
+            b'{' => {
+                objects.push(vec![]);
+                last_str = None;
+                i += 1;
+            }
+            b'}' => {
+                objects.pop();
+                last_str = None;
+                i += 1;
+            }
             b'"' => {
                 let start = i + 1;
                 i += 1;
@@ -76,6 +89,12 @@ pub fn check_json_numbers(text: &str) -> Result<(), (String, String)> {
             b':' => {
                 if let Some((s, e)) = last_str.take() {
                     key = text.get(s..e).unwrap_or("").to_string();
+                    if let Some(keys) = objects.last_mut() {
+                        if keys.contains(&key) {
+                            return Err((key, "given twice in one object".into()));
+                        }
+                        keys.push(key.clone());
+                    }
                 }
                 i += 1;
             }
@@ -158,6 +177,13 @@ mod tests {
         // Escaped quotes inside strings do not end them.
         assert_eq!(check_json_numbers(r#"{"a\"1e-400": 0}"#), Ok(()));
         assert_eq!(check_json_numbers("1e-400").unwrap_err().0, "(line)");
+        // Keys twice in one object are refused; the same key in sibling or nested objects is not.
+        let (k, why) = check_json_numbers(r#"{"a": 1, "b": {"a": 2}, "a": 3}"#).unwrap_err();
+        assert_eq!((k.as_str(), why.contains("twice")), ("a", true));
+        assert_eq!(
+            check_json_numbers(r#"{"r": [{"o": 1}, {"o": 2}], "o": {"o": 0}}"#),
+            Ok(())
+        );
     }
 
     #[test]

@@ -3,9 +3,11 @@
 //! A named output is written to a temporary file beside it and renamed over it only when the command
 //! succeeds: after any error (a line that does not parse, a vector that does not fit the format, a full
 //! disk) the named file is untouched, and the temporary file is removed. An existing path that is not a
-//! regular file (`/dev/stdout`, a pipe) is written in place. Standard output gets its header only with the
-//! first line of results, so an input rejected before any result prints nothing. Every error names the
-//! path.
+//! regular file (`/dev/stdout`, a pipe) is written in place; a symbolic link is followed, so the file it
+//! names is replaced and the link stays; an existing file's permissions carry over. Standard output gets
+//! its header only with the first line of results, so an input rejected before any result prints
+//! nothing. Every error names the path. A run killed part-way (Ctrl-C) leaves its temporary file,
+//! `.<name>.rtu-<pid>.tmp`, beside the target; the target itself is untouched.
 
 use std::fs::File;
 use std::io::{BufWriter, Write};
@@ -44,14 +46,26 @@ impl Output {
         let sink = match path {
             None => Sink::Stdout(BufWriter::new(std::io::stdout())),
             Some(p) => {
-                let in_place = std::fs::metadata(p).is_ok_and(|m| !m.is_file());
-                let tmp = (!in_place).then(|| temp_path(p));
-                let f = File::create(tmp.as_deref().unwrap_or(p))
-                    .map_err(|e| format!("{}: cannot create the output file: {e}", p.display()))?;
+                let meta = std::fs::metadata(p).ok();
+                let in_place = meta.as_ref().is_some_and(|m| !m.is_file());
+                // Through a symbolic link: write beside, and rename over, the file it names.
+                let real = std::fs::canonicalize(p).unwrap_or_else(|_| p.to_path_buf());
+                let tmp = (!in_place).then(|| temp_path(&real));
+                let open = tmp.as_deref().unwrap_or(p);
+                let f = File::create(open).map_err(|e| {
+                    format!(
+                        "{}: cannot create the output file ({}): {e}",
+                        p.display(),
+                        open.display()
+                    )
+                })?;
+                if let (Some(m), true) = (&meta, tmp.is_some()) {
+                    f.set_permissions(m.permissions()).ok();
+                }
                 Sink::File {
                     w: BufWriter::new(f),
                     tmp,
-                    target: p.to_path_buf(),
+                    target: if in_place { p.to_path_buf() } else { real },
                 }
             }
         };
@@ -172,6 +186,18 @@ mod tests {
         assert_eq!(std::fs::read_dir(&d).unwrap().count(), 1);
         write_file(&d.join("w.md"), "x").unwrap();
         assert_eq!(std::fs::read_to_string(d.join("w.md")).unwrap(), "x");
+        // Through a link: the linked file gets the results, the link stays a link.
+        #[cfg(unix)]
+        {
+            let link = d.join("link.csv");
+            std::os::unix::fs::symlink(&p, &link).unwrap();
+            write_file(&link, "via link\n").unwrap();
+            assert!(std::fs::symlink_metadata(&link)
+                .unwrap()
+                .file_type()
+                .is_symlink());
+            assert_eq!(std::fs::read_to_string(&p).unwrap(), "via link\n");
+        }
         std::fs::remove_dir_all(&d).unwrap();
     }
 
@@ -182,6 +208,10 @@ mod tests {
         assert!(
             e.starts_with("/nonexistent-rtu-dir/r.csv: cannot create"),
             "{e}"
+        );
+        assert!(
+            e.contains("/nonexistent-rtu-dir/.r.csv.rtu-"),
+            "the temporary path: {e}"
         );
         if Path::new("/dev/full").exists() {
             let e = write_file(Path::new("/dev/full"), vec![0u8; 1 << 16]).unwrap_err();

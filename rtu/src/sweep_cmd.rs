@@ -231,7 +231,7 @@ pub fn read_area(path: &Path) -> Result<HashMap<String, Area>, String> {
         let cols = cols.as_ref().expect("the first line is the header");
         if f.len() != cols.len() {
             return Err(bad(format!(
-                "{} cells, but the header has {}",
+                "{} cells, but the header has {} (rows of another run need their own header line)",
                 f.len(),
                 cols.len()
             )));

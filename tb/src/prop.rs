@@ -105,6 +105,9 @@ pub fn shrinking_equivalence<D, G, M>(
     M: Fn(&D::In) -> D::Out,
 {
     let dut = std::cell::RefCell::new(make(None));
+    // Set while a burst runs: a burst that panicked (the model, or a simulation that does not settle)
+    // left the block mid-burst, and the next case starts on a fresh one.
+    let dirty = std::cell::Cell::new(false);
     let mut runner = TestRunner::new(Config {
         cases,
         failure_persistence: None,
@@ -115,7 +118,10 @@ pub fn shrinking_equivalence<D, G, M>(
     });
     let result = runner.run(&bursts(words), |burst| {
         let mut d = dut.borrow_mut();
-        run_checked(&mut *d, decode(&burst, &gen), &model)
+        if dirty.replace(true) {
+            *d = make(None);
+        }
+        let r = run_checked(&mut *d, decode(&burst, &gen), &model)
             .map(|_| ())
             .map_err(|m| {
                 // A failing run stops with results still in the pipeline: drain them, so the next case
@@ -124,13 +130,17 @@ pub fn shrinking_equivalence<D, G, M>(
                     d.step(None);
                 }
                 TestCaseError::fail(m.to_string())
-            })
+            });
+        dirty.set(false);
+        r
     });
     match result {
         Ok(()) => {}
         Err(TestError::Fail(why, burst)) => {
             let inputs = decode(&burst, &gen);
             let path = vcd_path(name, &burst);
+            // A waveform of an earlier run with the same shrunk burst must not stand in for this one.
+            std::fs::remove_file(&path).ok();
             let mut d = make(Some(&path));
             let _ = run_checked(&mut d, inputs.clone(), &model);
             drop(d);

@@ -426,41 +426,13 @@ fn bad_line(src: &str, line: usize, field: impl Into<String>, why: impl Into<Str
 
 /// The OBJ statements that [`parse_obj`] reads past: the Wavefront format's statements other than `v` and
 /// `f` (vertex data, elements, free-form geometry, grouping, display and render attributes).
-pub const OBJ_SKIPPED: [&str; 34] = [
-    "vt",
-    "vn",
-    "vp",
-    "cstype",
-    "deg",
-    "bmat",
-    "step",
-    "p",
-    "l",
-    "curv",
-    "curv2",
-    "surf",
-    "parm",
-    "trim",
-    "hole",
-    "scrv",
-    "sp",
-    "end",
-    "con",
-    "g",
-    "s",
-    "mg",
-    "o",
-    "bevel",
-    "c_interp",
-    "d_interp",
-    "lod",
-    "usemtl",
-    "mtllib",
-    "shadow_obj",
-    "trace_obj",
-    "ctech",
-    "stech",
-    "call",
+#[rustfmt::skip]
+pub const OBJ_SKIPPED: [&str; 42] = [
+    "vt", "vn", "vp", "cstype", "deg", "bmat", "step", "p", "l", "curv", "curv2", "surf", "parm", "trim",
+    "hole", "scrv", "sp", "end", "con", "g", "s", "mg", "o", "bevel", "c_interp", "d_interp", "lod",
+    "usemtl", "mtllib", "shadow_obj", "trace_obj", "ctech", "stech", "call", "csh", "maplib", "usemap",
+    // Superseded by the statements above, still found in old files.
+    "bsp", "bzp", "cdc", "cdp", "res",
 ];
 
 /// Parses OBJ text; `source_name` names it in errors. The camera looks at the centre of the bounds
@@ -807,7 +779,7 @@ mod tests {
     #[test]
     fn obj_byte_order_mark_and_other_statements_are_read_past() {
         let plain = "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n";
-        let rich = "\u{feff}mtllib a.mtl\no tri\ng g1\ns off\nusemtl red\nv 0 0 0 1\nv 1 0 0 0.5 0.5 0.5\n\
+        let rich = "\u{feff}mtllib a.mtl\nmaplib m.map\nusemap off\nbsp 1\no tri\ng g1\ns off\nusemtl red\nv 0 0 0 1\nv 1 0 0 0.5 0.5 0.5\n\
                     v 0 1 0\nvn 0 0 1\nvt 0 0\nl 1 2\nf 1//1 2//1 3//1\n";
         let (a, b) = (
             parse_obj(plain, "a").unwrap(),

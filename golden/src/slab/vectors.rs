@@ -18,7 +18,9 @@
 //! `tag` is optional and defaults to the vector's index. Every error names the line and the field.
 //!
 //! Results: JSON lines `{"tag", "hit", "t_entry", "t_exit"}` or CSV `tag,hit,t_entry,t_exit`, with t in
-//! world units (exactly the datapath's t codes converted back; `inf`/`-inf` for the end codes).
+//! world units: the datapath's t codes converted back, exactly where f64 holds the value and otherwise
+//! rounded outward (an entry down, an exit up; [`crate::format::fixed::FixRay::t_entry_f64`]), `inf`/`-inf`
+//! for the end codes. Readers follow [`crate::text`] (unknown fields, number range, byte-order mark).
 
 use crate::error::Error;
 use crate::geom::{Aabb, Ray};
@@ -275,19 +277,19 @@ pub(crate) fn read_line(
 
 /// Every column of a vector CSV header is known (a misspelt column would be ignored, and its value with
 /// it) and named once.
-fn check_header(src: &str, h: &[String]) -> Result<(), Error> {
+fn check_header(src: &str, line: usize, h: &[String]) -> Result<(), Error> {
     let planes: Vec<String> = (0..MAX_VECTOR_PLANES)
         .flat_map(|k| (0..4).map(move |c| plane_col(k, c)))
         .collect();
     for (i, c) in h.iter().enumerate() {
         if h[..i].contains(c) {
-            return Err(line_err(src, 1, c, "column named twice in the header"));
+            return Err(line_err(src, line, c, "column named twice in the header"));
         }
         if !CSV_FIELDS.contains(&c.as_str()) && !planes.contains(c) {
             let mut known: Vec<&str> = CSV_FIELDS.to_vec();
             known.push("p0_nx, p0_ny, p0_nz, p0_w, ... p7_w");
             let why = crate::text::unknown_field(c, &known);
-            return Err(line_err(src, 1, c, format!("{why} in the header")));
+            return Err(line_err(src, line, c, format!("{why} in the header")));
         }
     }
     Ok(())
@@ -358,17 +360,25 @@ pub fn read_numbered_vectors<'a, R: BufRead + Send + 'a>(
             let header: Result<Vec<String>, Error> = rdr
                 .headers()
                 .map(|h| h.iter().map(|s| s.to_string()).collect())
-                .map_err(|e| Error::Io(format!("{src}: cannot read the CSV header: {e}")));
+                .map_err(|e| csv_err(&src, e));
+            // The header's own line: the csv crate gives the header record line 1 even after comment
+            // lines, but its reader's position after the header is the line that follows it.
+            let hline = (rdr.position().line() as usize).saturating_sub(1).max(1);
             let src_h = src.clone();
             let cols = header.and_then(|h| {
-                check_header(&src_h, &h)?;
+                check_header(&src_h, hline, &h)?;
                 let mut cols = [usize::MAX; 15];
                 for (k, name) in CSV_FIELDS.iter().enumerate() {
                     match h.iter().position(|c| c == name) {
                         Some(i) => cols[k] = i,
                         None if *name == "tag" => {}
                         None => {
-                            return Err(line_err(&src_h, 1, name, "column missing from the header"))
+                            return Err(line_err(
+                                &src_h,
+                                hline,
+                                name,
+                                "column missing from the header",
+                            ))
                         }
                     }
                 }
@@ -380,12 +390,12 @@ pub fn read_numbered_vectors<'a, R: BufRead + Send + 'a>(
                         .collect();
                     match found.iter().flatten().count() {
                         0 => {}
-                        4 => pcols.push([0, 1, 2, 3].map(|c| found[c].expect("present"))),
+                        4 => pcols.push((k, [0, 1, 2, 3].map(|c| found[c].expect("present")))),
                         _ => {
                             let miss = (0..4).find(|&c| found[c].is_none()).expect("one missing");
                             return Err(line_err(
                                 &src_h,
-                                1,
+                                hline,
                                 &plane_col(k, miss),
                                 "column missing from the header (a plane needs all four)",
                             ));
@@ -428,7 +438,7 @@ pub fn read_numbered_vectors<'a, R: BufRead + Send + 'a>(
                         parse_num(s).map_err(|why| line_err(src, line, CSV_FIELDS[k], why))?;
                 }
                 let mut planes = vec![];
-                for (k, pc) in pcols.iter().enumerate() {
+                for &(k, pc) in &pcols {
                     let cells: Vec<&str> = pc.iter().map(|&i| rec.get(i).unwrap_or("")).collect();
                     if cells.iter().all(|c| c.is_empty()) {
                         continue;
@@ -828,6 +838,42 @@ mod tests {
                 "{fmt:?}: {e}"
             );
         }
+    }
+
+    /// Header errors name the header's own line (after comment lines); plane errors the plane's number
+    /// as written (p2 stays p2 when p1 is absent).
+    #[test]
+    fn csv_errors_name_the_header_line_and_the_plane_as_written() {
+        let e = err(
+            VecFormat::Csv,
+            &format!("# a comment\n# another\n{},x\n", csv_vector_header()),
+        );
+        let e2 = err(
+            VecFormat::Csv,
+            &format!("# a comment\n# another\n{}\n1,2\n", csv_vector_header()),
+        );
+        assert!(e.contains("test:3") && e.contains("`x`"), "{e}");
+        assert!(e2.contains("test:4"), "{e2}");
+        let h = format!("{},p2_nx,p2_ny,p2_nz,p2_w", csv_vector_header());
+        let e = err(
+            VecFormat::Csv,
+            &format!("{h}\n1,0,0,-5,0,0,1,0,inf,-1,-1,-1,1,1,1,1,0,zz,0\n"),
+        );
+        assert!(e.contains("test:2") && e.contains("field `p2_nz`"), "{e}");
+    }
+
+    /// A key given twice would keep its last value silently.
+    #[test]
+    fn json_keys_given_twice_are_errors() {
+        let b = "\"origin\":[0,0,-5],\"dir\":[0,0,1],\"box_min\":[-1,-1,-1],\"box_max\":[1,1,1]";
+        let e = err(
+            VecFormat::JsonLines,
+            &format!("{{{b},\"t_max\":1,\"t_max\":2}}"),
+        );
+        assert!(
+            e.contains("test:1") && e.contains("field `t_max`") && e.contains("twice"),
+            "{e}"
+        );
     }
 
     #[test]
