@@ -240,16 +240,19 @@ fn outputs_are_complete_or_absent() {
         ("broken_f.jsonl", format!("{ok}{ok}x\n"), "fp16"),
     ] {
         let p = d.file(name, text);
+        let run = || {
+            rtu(&[
+                "run",
+                &p,
+                "--format",
+                fmt,
+                "--bounds=-2,-2,-6,2,2,2",
+                "-o",
+                outs,
+            ])
+        };
         std::fs::write(&out, "previous results\n").unwrap();
-        let o = rtu(&[
-            "run",
-            &p,
-            "--format",
-            fmt,
-            "--bounds=-2,-2,-6,2,2,2",
-            "-o",
-            outs,
-        ]);
+        let o = run();
         assert!(!o.status.success(), "{name}");
         assert_eq!(
             std::fs::read_to_string(&out).unwrap(),
@@ -257,15 +260,7 @@ fn outputs_are_complete_or_absent() {
             "{name}"
         );
         std::fs::remove_file(&out).unwrap();
-        let o = rtu(&[
-            "run",
-            &p,
-            "--format",
-            fmt,
-            "--bounds=-2,-2,-6,2,2,2",
-            "-o",
-            outs,
-        ]);
+        let o = run();
         assert!(!o.status.success(), "{name}");
         assert!(!out.exists(), "{name}: a partial output was left");
     }

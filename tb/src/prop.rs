@@ -153,6 +153,21 @@ pub fn shrinking_equivalence<D, G, M>(
     }
 }
 
+/// Runs `f`, a [`shrinking_equivalence`] check expected to fail (a mutation test), and returns its panic
+/// message after checking that it reports a shrunk burst and that its waveform exists and holds
+/// `valid_out`.
+pub fn expect_caught(f: impl FnOnce() + std::panic::UnwindSafe) -> String {
+    let msg = match std::panic::catch_unwind(f) {
+        Ok(()) => panic!("a wrong model passed"),
+        Err(e) => e.downcast_ref::<String>().cloned().unwrap_or_default(),
+    };
+    let vcd = PathBuf::from(msg.rsplit("waveform: ").next().unwrap_or("").trim());
+    assert!(vcd.exists(), "no VCD at {}: {msg}", vcd.display());
+    assert!(std::fs::read_to_string(&vcd).unwrap().contains("valid_out"));
+    assert!(msg.contains("shrunk burst"), "{msg}");
+    msg
+}
+
 fn vcd_path(name: &str, burst: &Burst) -> PathBuf {
     let mut h = std::collections::hash_map::DefaultHasher::new();
     burst.hash(&mut h);

@@ -9,7 +9,7 @@ use golden::plane::fix::CullFixFormat;
 use golden::plane::float::{node_float, CullFloatFormat};
 use tb::plane::fix::{raw_node_fix, CullFixCtx};
 use tb::plane::float::{raw_node, with_big_stack};
-use tb::prop::shrinking_equivalence;
+use tb::prop::{expect_caught, shrinking_equivalence};
 use tb::rtl_sim::SlabRtl;
 use tb::slab::ports::SlabCtx;
 
@@ -87,23 +87,10 @@ fn plane_float_e5m10_k2_matches_model_shrinking() {
     plane_float_e5m10_k2("plane_float_e5m10_k2", false);
 }
 
-/// The panic message of a failing check, and its waveform's path.
-pub fn caught(f: impl FnOnce() + std::panic::UnwindSafe) -> (String, std::path::PathBuf) {
-    let msg = match std::panic::catch_unwind(f) {
-        Ok(()) => panic!("a wrong model passed"),
-        Err(e) => e.downcast_ref::<String>().cloned().unwrap_or_default(),
-    };
-    let vcd = std::path::PathBuf::from(msg.rsplit("waveform: ").next().unwrap().trim());
-    assert!(vcd.exists(), "no VCD at {}: {msg}", vcd.display());
-    assert!(std::fs::read_to_string(&vcd).unwrap().contains("valid_out"));
-    assert!(msg.contains("shrunk burst"), "{msg}");
-    (msg, vcd)
-}
-
 #[test]
 fn a_wrong_model_is_caught_shrunk_and_leaves_a_vcd() {
-    let (msg, _) = caught(|| plane_fix_b12_k2("plane_fix_b12_k2_wrong_model", true));
+    let msg = expect_caught(|| plane_fix_b12_k2("plane_fix_b12_k2_wrong_model", true));
     // Shrinking leaves one test in the burst: the first mismatch is test #0.
     assert!(msg.contains("test #0"), "{msg}");
-    caught(|| plane_float_e5m10_k2("plane_float_e5m10_k2_wrong_model", true));
+    expect_caught(|| plane_float_e5m10_k2("plane_float_e5m10_k2_wrong_model", true));
 }
