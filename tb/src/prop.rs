@@ -1,6 +1,8 @@
-//! proptest with shrinking, and a waveform of the shrunk failing case, for any pipelined block whose
-//! inputs come from a random generator (the cull-plane testers, the bundle pairs; the slab testers have
-//! their own field-by-field strategies in [`crate::slab::strategies`]).
+//! proptest with shrinking, and a waveform of the shrunk failing case: [`shrinking_check`] for any block
+//! and strategy (the results processor's job programs, [`crate::bundle::split::split_shrinking`]), and
+//! [`shrinking_equivalence`] for any pipelined block whose inputs come from a random generator (the
+//! cull-plane testers, the bundle pairs; the slab testers have their own field-by-field strategies in
+//! [`crate::slab::strategies`]).
 //!
 //! The block's raw-input generator (`raw_node`, `raw_bundle`, ...: every code over its range, special
 //! values weighted up) draws from a [`Tape`], a random source that replays a list of words proptest
@@ -87,11 +89,99 @@ pub fn decode<I>(burst: &Burst, gen: &impl Fn(&mut Tape) -> I) -> Vec<Option<I>>
         .collect()
 }
 
-/// Checks `cases` bursts of `gen`'s inputs through the block `make(None)` against `model`: results, tags
-/// and latency (`run_checked`). On a failure, proptest's shrunk burst is replayed on `make(Some(path))`,
-/// which must write a VCD at `path`, and the function panics with the decoded burst, the mismatch and the
-/// path (after `waveform: `). Tapes hold up to `words` words (enough for every field the generator draws;
-/// more are never read).
+/// The proptest driver every shrinking check here shares: `cases` values of `strategy`, each judged by
+/// `check` (`Err` with the mismatch); a failing value is shrunk by proptest, replayed by `replay` with the
+/// path of a VCD to write (`out/vcd/<name>_<hash of the value as printed>.vcd`), and reported in a panic naming the
+/// shrunk value as `describe` writes it, the mismatch and the path (after `waveform: `).
+pub fn shrinking_check<S>(
+    name: &str,
+    cases: u32,
+    strategy: S,
+    check: impl FnMut(&S::Value) -> Result<(), String>,
+    replay: impl FnOnce(&S::Value, &Path),
+    describe: impl FnOnce(&S::Value) -> String,
+) where
+    S: Strategy,
+{
+    let check = std::cell::RefCell::new(check);
+    let mut runner = TestRunner::new(Config {
+        cases,
+        failure_persistence: None,
+        // Each shrink step simulates the block; a thousand steps reach a one-test burst (or a one-job
+        // program) with many words zero, and bound the time a failure takes to report.
+        max_shrink_iters: 1024,
+        ..Config::default()
+    });
+    match runner.run(&strategy, |v| {
+        (check.borrow_mut())(&v).map_err(TestCaseError::fail)
+    }) {
+        Ok(()) => {}
+        Err(TestError::Fail(why, v)) => {
+            let path = vcd_path(name, &v);
+            // A waveform of an earlier run with the same shrunk value must not stand in for this one.
+            std::fs::remove_file(&path).ok();
+            replay(&v, &path);
+            panic!(
+                "{name}: RTL differs from the model on the shrunk {}\n{why}\nwaveform: {}",
+                describe(&v),
+                path.display()
+            );
+        }
+        Err(e) => panic!("{name}: {e}"),
+    }
+}
+
+/// Checks `cases` bursts of `strategy` (each decoded into the block's inputs, a bubble as `None`)
+/// through the block `make(None)` against `model`: results, tags and latency (`run_checked`). On a
+/// failure, proptest's shrunk burst is replayed on `make(Some(path))`, which must write a VCD at `path`
+/// ([`shrinking_check`]).
+pub fn shrinking_pipelined<D, S, M>(
+    name: &str,
+    cases: u32,
+    strategy: S,
+    decode: impl Fn(&S::Value) -> Vec<Option<D::In>>,
+    make: impl Fn(Option<&Path>) -> D,
+    model: M,
+) where
+    D: PipelinedDut,
+    S: Strategy,
+    M: Fn(&D::In) -> D::Out,
+{
+    let mut dut = make(None);
+    // Set while a burst runs: a burst that panicked (the model, or a simulation that does not settle)
+    // left the block mid-burst, and the next case starts on a fresh one.
+    let mut dirty = false;
+    shrinking_check(
+        name,
+        cases,
+        strategy,
+        |burst| {
+            if std::mem::replace(&mut dirty, true) {
+                dut = make(None);
+            }
+            let r = run_checked(&mut dut, decode(burst), &model)
+                .map(|_| ())
+                .map_err(|m| {
+                    // A failing run stops with results still in the pipeline: drain them, so the next
+                    // case (proptest's shrinking) is judged on its own burst.
+                    for _ in 0..=dut.latency() {
+                        dut.step(None);
+                    }
+                    m.to_string()
+                });
+            dirty = false;
+            r
+        },
+        |burst, path| {
+            let mut d = make(Some(path));
+            let _ = run_checked(&mut d, decode(burst), &model);
+        },
+        |burst| format!("burst {:?}", decode(burst)),
+    );
+}
+
+/// [`shrinking_pipelined`] on bursts of tapes ([`bursts`]), each test drawn by `gen`. Tapes hold up to
+/// `words` words (enough for every field the generator draws; more are never read).
 pub fn shrinking_equivalence<D, G, M>(
     name: &str,
     cases: u32,
@@ -104,73 +194,26 @@ pub fn shrinking_equivalence<D, G, M>(
     G: Fn(&mut Tape) -> D::In,
     M: Fn(&D::In) -> D::Out,
 {
-    let dut = std::cell::RefCell::new(make(None));
-    // Set while a burst runs: a burst that panicked (the model, or a simulation that does not settle)
-    // left the block mid-burst, and the next case starts on a fresh one.
-    let dirty = std::cell::Cell::new(false);
-    let mut runner = TestRunner::new(Config {
-        cases,
-        failure_persistence: None,
-        // Each shrink step simulates a burst; a thousand steps reach a one-test burst with many words
-        // zero, and bound the time a failure takes to report.
-        max_shrink_iters: 1024,
-        ..Config::default()
-    });
-    let result = runner.run(&bursts(words), |burst| {
-        let mut d = dut.borrow_mut();
-        if dirty.replace(true) {
-            *d = make(None);
-        }
-        let r = run_checked(&mut *d, decode(&burst, &gen), &model)
-            .map(|_| ())
-            .map_err(|m| {
-                // A failing run stops with results still in the pipeline: drain them, so the next case
-                // (proptest's shrinking) is judged on its own burst.
-                for _ in 0..=d.latency() {
-                    d.step(None);
-                }
-                TestCaseError::fail(m.to_string())
-            });
-        dirty.set(false);
-        r
-    });
-    match result {
-        Ok(()) => {}
-        Err(TestError::Fail(why, burst)) => {
-            let inputs = decode(&burst, &gen);
-            let path = vcd_path(name, &burst);
-            // A waveform of an earlier run with the same shrunk burst must not stand in for this one.
-            std::fs::remove_file(&path).ok();
-            let mut d = make(Some(&path));
-            let _ = run_checked(&mut d, inputs.clone(), &model);
-            drop(d);
-            panic!(
-                "{name}: RTL differs from the model on the shrunk burst {inputs:?}\n{why}\nwaveform: {}",
-                path.display()
-            );
-        }
-        Err(e) => panic!("{name}: {e}"),
-    }
+    shrinking_pipelined(name, cases, bursts(words), |b| decode(b, &gen), make, model)
 }
 
-/// Runs `f`, a [`shrinking_equivalence`] check expected to fail (a mutation test), and returns its panic
-/// message after checking that it reports a shrunk burst and that its waveform exists and holds
-/// `valid_out`.
-pub fn expect_caught(f: impl FnOnce() + std::panic::UnwindSafe) -> String {
+/// Runs `f`, a [`shrinking_check`] expected to fail (a mutation test), and returns its panic message
+/// after checking that it reports a shrunk value and that its waveform exists and holds `signal`.
+pub fn expect_caught(signal: &str, f: impl FnOnce() + std::panic::UnwindSafe) -> String {
     let msg = match std::panic::catch_unwind(f) {
         Ok(()) => panic!("a wrong model passed"),
         Err(e) => e.downcast_ref::<String>().cloned().unwrap_or_default(),
     };
     let vcd = PathBuf::from(msg.rsplit("waveform: ").next().unwrap_or("").trim());
     assert!(vcd.exists(), "no VCD at {}: {msg}", vcd.display());
-    assert!(std::fs::read_to_string(&vcd).unwrap().contains("valid_out"));
-    assert!(msg.contains("shrunk burst"), "{msg}");
+    assert!(std::fs::read_to_string(&vcd).unwrap().contains(signal));
+    assert!(msg.contains("on the shrunk "), "{msg}");
     msg
 }
 
-fn vcd_path(name: &str, burst: &Burst) -> PathBuf {
+fn vcd_path(name: &str, value: &impl std::fmt::Debug) -> PathBuf {
     let mut h = std::collections::hash_map::DefaultHasher::new();
-    burst.hash(&mut h);
+    format!("{value:?}").hash(&mut h);
     crate::out_dir()
         .join("vcd")
         .join(format!("{name}_{:08x}.vcd", h.finish() as u32))

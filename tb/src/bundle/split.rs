@@ -19,6 +19,7 @@ use golden::bundle::fix::{BundleFixFormat, FixBundle};
 use golden::bundle::gen::BundleGen;
 use golden::bundle::split::{split_fix, SplitResult};
 use golden::format::fixed::GridMap;
+use proptest::prelude::{any, Strategy};
 use rand::seq::SliceRandom;
 use rand::{Rng, SeedableRng};
 use rand_pcg::Pcg64;
@@ -116,6 +117,160 @@ pub fn split_model(bf: &BundleFixFormat, job: &SplitJob, store: &RayStore) -> Sp
     split_fix(bf, &job.bundle, &job.boxes, store, job.active as u64)
 }
 
+/// A clock-by-clock stimulus under construction, with the outputs `model` predicts for every clock: ray
+/// writes, idle clocks, and jobs, each followed by the clocks the block is busy with it. The plan keeps
+/// the ray store as the model sees it (every write, also those while a job runs) and knows whether a
+/// start comes in the clock of its predecessor's `done`.
+pub struct SplitPlan<M> {
+    bf: BundleFixFormat,
+    model: M,
+    store: RayStore,
+    queue: VecDeque<(SplitIn, SplitExpect)>,
+    /// The running job's report and its busy clocks still to come.
+    running: Option<(SplitDone, u32)>,
+    /// The last clock planned is a job's `done` clock.
+    after_done: bool,
+}
+
+const IDLE: SplitExpect = SplitExpect {
+    ready: true,
+    done: None,
+};
+
+impl<M: Fn(&BundleFixFormat, &SplitJob, &RayStore) -> SplitResult> SplitPlan<M> {
+    pub fn new(bf: BundleFixFormat, model: M) -> Self {
+        SplitPlan {
+            bf,
+            model,
+            store: [FixBundle::default(); SPLIT_RAYS],
+            queue: VecDeque::new(),
+            running: None,
+            after_done: false,
+        }
+    }
+
+    fn push(&mut self, input: SplitIn, exp: SplitExpect) {
+        if let Some((a, r)) = input.write {
+            self.store[a] = r;
+        }
+        self.after_done = exp.done.is_some();
+        self.queue.push_back((input, exp));
+    }
+
+    fn idle_clock(&mut self, input: SplitIn) {
+        assert!(self.running.is_none(), "a job is still running");
+        self.push(input, IDLE);
+    }
+
+    /// `clocks` idle clocks.
+    pub fn idle(&mut self, clocks: usize) {
+        for _ in 0..clocks {
+            self.idle_clock(SplitIn::default());
+        }
+    }
+
+    /// One clock writing ray `r` to address `a`.
+    pub fn write(&mut self, a: usize, r: FixBundle) {
+        self.idle_clock(SplitIn {
+            write: Some((a, r)),
+            start: None,
+        });
+    }
+
+    /// A start clock of `job` (with `write`, which the job sees, in the same clock); returns the clocks
+    /// from start to done, all of which but the start clock the caller plans with [`SplitPlan::busy`].
+    pub fn start(&mut self, job: SplitJob, write: Option<(usize, FixBundle)>) -> u32 {
+        assert!(self.running.is_none(), "a job is still running");
+        if let Some((a, r)) = write {
+            self.store[a] = r;
+        }
+        let result = (self.model)(&self.bf, &job, &self.store);
+        let clocks = split_clocks(&result);
+        let done = SplitDone {
+            job,
+            store: Box::new(self.store),
+            result,
+            clocks,
+            back_to_back: self.after_done,
+        };
+        self.push(
+            SplitIn {
+                write,
+                start: Some(job),
+            },
+            SplitExpect {
+                ready: false,
+                done: None,
+            },
+        );
+        self.running = Some((done, clocks - 1));
+        clocks
+    }
+
+    /// One clock of the running job with `input` (writes outside the job's active rays, starts the
+    /// block must ignore); the last one reports.
+    pub fn busy(&mut self, input: SplitIn) {
+        let (done, left) = self.running.take().expect("no job running");
+        let exp = if left == 1 {
+            SplitExpect {
+                ready: true,
+                done: Some(done),
+            }
+        } else {
+            self.running = Some((done, left - 1));
+            SplitExpect {
+                ready: false,
+                done: None,
+            }
+        };
+        self.push(input, exp);
+    }
+
+    /// Starts `job` and plans its busy clocks, each with the input `noise` gives it.
+    pub fn run_job(
+        &mut self,
+        job: SplitJob,
+        write: Option<(usize, FixBundle)>,
+        mut noise: impl FnMut() -> SplitIn,
+    ) {
+        for _ in 1..self.start(job, write) {
+            let input = noise();
+            self.busy(input);
+        }
+    }
+
+    /// The next planned clock.
+    pub fn pop(&mut self) -> Option<(SplitIn, SplitExpect)> {
+        self.queue.pop_front()
+    }
+
+    /// Every planned clock.
+    pub fn into_clocks(self) -> Vec<(SplitIn, SplitExpect)> {
+        assert!(self.running.is_none(), "a job is still running");
+        self.queue.into()
+    }
+}
+
+/// The input of one busy clock with noise the block must ignore, drawn from `rng`: a quarter of the
+/// clocks a raw ray written to an address at or above `n` (outside the loaded set, when there is
+/// room), an eighth a start of a raw job.
+pub fn busy_noise<R: Rng>(bf: &BundleFixFormat, n: usize, rng: &mut R) -> SplitIn {
+    let mut input = SplitIn::default();
+    if n < SPLIT_RAYS && rng.gen_ratio(1, 4) {
+        let a = rng.gen_range(n..SPLIT_RAYS);
+        input.write = Some((a, *raw_bundle(bf, rng).0.sides().0));
+    }
+    if rng.gen_ratio(1, 8) {
+        let (p, boxes) = raw_bundle(bf, rng);
+        input.start = Some(SplitJob {
+            bundle: *p.sides().0,
+            boxes,
+            active: rng.gen(),
+        });
+    }
+    input
+}
+
 /// A seeded clock-by-clock stimulus of `jobs` jobs with the outputs `model` predicts (see the module
 /// doc). `quiet` leaves out the junk starts and garbage writes (for waveforms that count `start`).
 pub struct SplitStim<M> {
@@ -123,14 +278,12 @@ pub struct SplitStim<M> {
     map: GridMap,
     gen: BundleGen,
     rng: Pcg64,
-    store: RayStore,
     /// Rays of the loaded set, and its bundle.
     n: usize,
     bundle: FixBundle,
     jobs_left: u64,
-    queue: VecDeque<(SplitIn, SplitExpect)>,
+    plan: SplitPlan<M>,
     quiet: bool,
-    model: M,
 }
 
 impl<M: Fn(&BundleFixFormat, &SplitJob, &RayStore) -> SplitResult> SplitStim<M> {
@@ -141,13 +294,11 @@ impl<M: Fn(&BundleFixFormat, &SplitJob, &RayStore) -> SplitResult> SplitStim<M> 
             map: campaign_map(bf.base),
             gen: BundleGen::new(seed, lo, hi, 0.6),
             rng: Pcg64::seed_from_u64(seed ^ 0x9e37_79b9),
-            store: [FixBundle::default(); SPLIT_RAYS],
             n: 0,
             bundle: FixBundle::default(),
             jobs_left: jobs,
-            queue: VecDeque::new(),
+            plan: SplitPlan::new(bf, model),
             quiet,
-            model,
         }
     }
 
@@ -208,120 +359,68 @@ impl<M: Fn(&BundleFixFormat, &SplitJob, &RayStore) -> SplitResult> SplitStim<M> 
         }
     }
 
-    /// A junk job (for starts while busy).
-    fn junk(&mut self) -> SplitJob {
-        let (b, p, _) = self.draw_case();
-        SplitJob {
-            bundle: b,
-            boxes: p,
-            active: self.rng.gen(),
-        }
-    }
-
     fn plan_job(&mut self) {
-        let idle = SplitExpect {
-            ready: true,
-            done: None,
-        };
         let reuse = self.n > 0 && self.rng.gen_ratio(1, 3);
         let boxes;
+        // The last ray written in the start clock itself, sometimes (the contract allows it).
+        let mut held = None;
         if reuse {
             boxes = self.draw_case().1;
         } else {
             let (b, p, rays) = self.draw_set();
             let mut order: Vec<usize> = (0..rays.len()).collect();
             order.shuffle(&mut self.rng);
-            for a in order {
+            let hold = self.rng.gen_ratio(1, 4);
+            for (k, &a) in order.iter().enumerate() {
                 if self.rng.gen_ratio(1, 4) {
-                    for _ in 0..self.rng.gen_range(1..=3) {
-                        self.queue.push_back((SplitIn::default(), idle.clone()));
-                    }
+                    let gap = self.rng.gen_range(1..=3);
+                    self.plan.idle(gap);
                 }
-                self.store[a] = rays[a];
-                self.queue.push_back((
-                    SplitIn {
-                        write: Some((a, rays[a])),
-                        start: None,
-                    },
-                    idle.clone(),
-                ));
+                if hold && k == order.len() - 1 {
+                    held = Some((a, rays[a]));
+                } else {
+                    self.plan.write(a, rays[a]);
+                }
             }
             self.n = rays.len();
             self.bundle = b;
             boxes = p;
         }
         if self.rng.gen_ratio(1, if reuse { 3 } else { 2 }) {
-            for _ in 0..self.rng.gen_range(1..=3) {
-                self.queue.push_back((SplitIn::default(), idle.clone()));
+            if let Some((a, r)) = held.take() {
+                self.plan.write(a, r);
             }
+            let gap = self.rng.gen_range(1..=3);
+            self.plan.idle(gap);
         }
-        let back_to_back = reuse && self.queue.is_empty();
         let job = SplitJob {
             bundle: self.bundle,
             boxes,
             active: self.active_mask(),
         };
-        // The last ray written in the start clock itself, sometimes (the contract allows it).
-        let mut start = SplitIn {
-            write: None,
-            start: Some(job),
-        };
-        if !reuse && self.rng.gen_ratio(1, 4) {
-            if let Some((SplitIn { write: Some(w), .. }, _)) = self.queue.back() {
-                start.write = Some(*w);
-                self.queue.pop_back();
+        let (bf, n, quiet, rng) = (&self.bf, self.n, self.quiet, &mut self.rng);
+        self.plan.run_job(job, held, || {
+            if quiet {
+                SplitIn::default()
+            } else {
+                busy_noise(bf, n, rng)
             }
-        }
-        let result = (self.model)(&self.bf, &job, &self.store);
-        let clocks = split_clocks(&result);
-        let done = SplitDone {
-            job,
-            store: Box::new(self.store),
-            result,
-            clocks,
-            back_to_back,
-        };
-        self.queue.push_back((
-            start,
-            SplitExpect {
-                ready: false,
-                done: None,
-            },
-        ));
-        for k in 1..clocks {
-            let mut input = SplitIn::default();
-            if !self.quiet && self.n < SPLIT_RAYS && self.rng.gen_ratio(1, 4) {
-                let a = self.rng.gen_range(self.n..SPLIT_RAYS);
-                let r = *raw_bundle(&self.bf, &mut self.rng).0.sides().0;
-                self.store[a] = r;
-                input.write = Some((a, r));
-            }
-            if !self.quiet && self.rng.gen_ratio(1, 8) {
-                input.start = Some(self.junk());
-            }
-            let last = k == clocks - 1;
-            self.queue.push_back((
-                input,
-                SplitExpect {
-                    ready: last,
-                    done: last.then(|| done.clone()),
-                },
-            ));
-        }
+        });
     }
 }
 
 impl<M: Fn(&BundleFixFormat, &SplitJob, &RayStore) -> SplitResult> Iterator for SplitStim<M> {
     type Item = (SplitIn, SplitExpect);
     fn next(&mut self) -> Option<Self::Item> {
-        if self.queue.is_empty() {
-            if self.jobs_left == 0 {
-                return None;
-            }
-            self.jobs_left -= 1;
-            self.plan_job();
+        if let Some(c) = self.plan.pop() {
+            return Some(c);
         }
-        self.queue.pop_front()
+        if self.jobs_left == 0 {
+            return None;
+        }
+        self.jobs_left -= 1;
+        self.plan_job();
+        self.plan.pop()
     }
 }
 
@@ -340,6 +439,19 @@ pub struct SplitStats {
 }
 
 impl SplitStats {
+    /// Adds the counts of `o`.
+    pub fn add(&mut self, o: &SplitStats) {
+        self.cycles += o.cycles;
+        self.jobs += o.jobs;
+        self.all_hit += o.all_hit;
+        self.all_miss += o.all_miss;
+        self.split += o.split;
+        self.split_rays += o.split_rays;
+        self.odd_splits += o.odd_splits;
+        self.full_splits += o.full_splits;
+        self.back_to_back += o.back_to_back;
+    }
+
     fn count(&mut self, d: &SplitDone) {
         self.jobs += 1;
         let r = &d.result;
@@ -521,51 +633,134 @@ pub fn directed(
     jobs: &[SplitJob],
     model: impl Fn(&BundleFixFormat, &SplitJob, &RayStore) -> SplitResult,
 ) -> Vec<(SplitIn, SplitExpect)> {
-    let mut store = [FixBundle::default(); SPLIT_RAYS];
-    let mut out = vec![];
+    let mut plan = SplitPlan::new(*bf, model);
     for (a, r) in rays.iter().enumerate().take(SPLIT_RAYS) {
-        store[a] = *r;
-        out.push((
-            SplitIn {
-                write: Some((a, *r)),
-                start: None,
-            },
-            SplitExpect {
-                ready: true,
-                done: None,
-            },
-        ));
+        plan.write(a, *r);
     }
-    for (k, job) in jobs.iter().enumerate() {
-        let result = model(bf, job, &store);
-        let clocks = split_clocks(&result);
-        let start = SplitIn {
-            write: None,
-            start: Some(*job),
+    for job in jobs {
+        plan.run_job(*job, None, SplitIn::default);
+    }
+    plan.into_clocks()
+}
+
+/// One job of a program for [`split_shrinking`], in the terms proptest shrinks: smaller numbers and
+/// `None` are simpler jobs.
+#[derive(Clone, Debug)]
+pub struct SplitStep {
+    /// Seed of the job's BundleGen case: its bundle and box pair are the job's, its rays the set loaded.
+    pub case: u64,
+    /// Load a new set of this many rays (one less than the value, 1 to 16) before the job, written to
+    /// addresses 0.. one a clock: the case's rays, padded with rays of the cases that follow it. `None`:
+    /// reuse the loaded set.
+    pub load: Option<u8>,
+    /// Idle clocks before the start (0 starts in the clock of the previous job's `done`).
+    pub gap: u8,
+    /// Active rays (this mask within the loaded set).
+    pub active: u16,
+    /// Noise while the job runs ([`busy_noise`]), drawn from this seed.
+    pub noise: Option<u64>,
+}
+
+/// Programs of 1 to 4 jobs.
+pub fn split_program() -> impl Strategy<Value = Vec<SplitStep>> {
+    let step = (
+        any::<u64>(),
+        proptest::option::of(0..SPLIT_RAYS as u8),
+        0..3u8,
+        // Any mask, all rays (a full set of 16 is a split of 8 pair clocks), one ray.
+        proptest::prop_oneof![
+            3 => any::<u16>(),
+            1 => proptest::strategy::Just(u16::MAX),
+            1 => (0..16u32).prop_map(|b| 1u16 << b),
+        ],
+        proptest::option::of(any::<u64>()),
+    )
+        .prop_map(|(case, load, gap, active, noise)| SplitStep {
+            case,
+            load,
+            gap,
+            active,
+            noise,
+        });
+    proptest::collection::vec(step, 1..=4)
+}
+
+/// The clocks of `program` with the outputs `model` predicts.
+pub fn plan_program(
+    bf: &BundleFixFormat,
+    program: &[SplitStep],
+    model: impl Fn(&BundleFixFormat, &SplitJob, &RayStore) -> SplitResult,
+) -> Vec<(SplitIn, SplitExpect)> {
+    let map = campaign_map(bf.base);
+    let (lo, hi) = campaign_bounds();
+    let mut plan = SplitPlan::new(*bf, model);
+    let mut n = 0;
+    for step in program {
+        let mut gen = BundleGen::new(step.case, lo, hi, 0.6);
+        let mut case = || loop {
+            let c = if step.case % 8 == 0 {
+                gen.grid_one_ray(&map)
+            } else {
+                gen.next_case()
+            };
+            if let Some(q) = quantised_case(bf, &map, &c) {
+                return q;
+            }
         };
-        out.push((
-            start,
-            SplitExpect {
-                ready: false,
-                done: None,
-            },
-        ));
-        for c in 1..clocks {
-            let last = c == clocks - 1;
-            out.push((
-                SplitIn::default(),
-                SplitExpect {
-                    ready: last,
-                    done: last.then(|| SplitDone {
-                        job: *job,
-                        store: Box::new(store),
-                        result,
-                        clocks,
-                        back_to_back: k > 0,
-                    }),
-                },
-            ));
+        let (bundle, boxes, mut rays) = case();
+        if let Some(k) = step.load {
+            let k = k as usize + 1;
+            while rays.len() < k {
+                rays.extend(case().2);
+            }
+            for (a, r) in rays.iter().take(k).enumerate() {
+                plan.write(a, *r);
+            }
+            n = k;
         }
+        plan.idle(step.gap as usize);
+        let job = SplitJob {
+            bundle,
+            boxes,
+            active: step.active & ((1u32 << n) - 1) as u16,
+        };
+        let mut rng = step.noise.map(Pcg64::seed_from_u64);
+        plan.run_job(job, None, || match rng.as_mut() {
+            Some(r) => busy_noise(bf, n, r),
+            None => SplitIn::default(),
+        });
     }
-    out
+    plan.into_clocks()
+}
+
+/// proptest with shrinking for the results processor `S` ([`crate::prop::shrinking_check`]): `cases`
+/// programs ([`split_program`]), each on a fresh block, checked clock by clock against `model`
+/// ([`run_split`]); a failing program is shrunk, replayed with a VCD, and reported. Returns what the
+/// programs covered.
+pub fn split_shrinking<S: BundleSplitIo>(
+    name: &str,
+    bf: BundleFixFormat,
+    cases: u32,
+    model: impl Fn(&BundleFixFormat, &SplitJob, &RayStore) -> SplitResult + Copy,
+) -> SplitStats {
+    let mut total = SplitStats::default();
+    crate::prop::shrinking_check(
+        name,
+        cases,
+        split_program(),
+        |program| {
+            let s = run_split(
+                &mut SplitRtl::<S>::new(&bf),
+                plan_program(&bf, program, model),
+            )?;
+            total.add(&s);
+            Ok(())
+        },
+        |program, path| {
+            let mut d = SplitRtl::<S>::new(&bf).vcd_to(path).expect("VCD");
+            let _ = run_split(&mut d, plan_program(&bf, program, model));
+        },
+        |program| format!("job program {program:?}"),
+    );
+    total
 }

@@ -1,18 +1,23 @@
 //! proptest with shrinking for the bundle pairs, fixed and float (`tb::prop`): bursts of raw tests (a
 //! bundle or two rays and a box pair, every code over its range, float NaN and infinities included) with
-//! bubbles, rust-hdl against the model; a failing burst is shrunk and written as a VCD. A wrong model is
-//! caught, and the failure leaves its waveform.
+//! bubbles, rust-hdl against the model; and for the results processor: programs of up to four jobs
+//! (`tb::bundle::split::split_program`: new ray sets or the loaded one, idle gaps or back to back, active
+//! masks, noise while busy), clock by clock. A failing burst or program is shrunk and written as a VCD.
+//! A wrong model is caught, and the failure leaves its waveform.
 
 use golden::bundle::fix::BundleFixFormat;
 use golden::format::float::FloatFormat;
 use rtl::bundle::pair_float::BundleFloatIo;
 use tb::bundle::pair_fix::{bundle_model, bundle_rtl, raw_bundle};
 use tb::bundle::pair_float::{bundle_float_model, bundle_float_rtl, raw_float_vec};
+use tb::bundle::split::{split_model, split_shrinking};
 use tb::plane::float::with_big_stack;
 use tb::prop::{expect_caught, shrinking_equivalence};
 
 const CASES: u32 = 1_500;
 const WORDS: usize = 160;
+/// Job programs for the results processor (each up to four jobs).
+const SPLIT_CASES: u32 = 2_000;
 
 /// The mutation of a wrong model: AllHit and AnyHit's answers exchanged.
 fn swap((h, m): (bool, bool), wrong: bool) -> (bool, bool) {
@@ -89,10 +94,67 @@ fn a_wrong_model_is_caught_shrunk_and_leaves_a_vcd() {
             as Box<dyn FnOnce() + std::panic::UnwindSafe>,
         Box::new(|| pair_float_fp16("bundle_float_fp16_wrong_model", true)),
     ] {
-        let msg = expect_caught(run);
+        let msg = expect_caught("valid_out", run);
         assert!(
             msg.contains("shrunk burst") && msg.contains("test #0"),
             "{msg}"
+        );
+    }
+}
+
+#[test]
+fn split_b12_matches_model_shrinking() {
+    let s = with_big_stack(|| {
+        split_shrinking::<rtl::BundleSplitB12>(
+            "bundle_split_b12",
+            BundleFixFormat::presets()[1],
+            SPLIT_CASES,
+            split_model,
+        )
+    });
+    println!("bundle_split_b12: {s:?}");
+    let j = s.jobs / 20;
+    assert!(
+        s.all_hit > j && s.all_miss > j && s.split > j && s.back_to_back > j,
+        "every outcome and back-to-back starts must be well represented: {s:?}"
+    );
+    assert!(s.odd_splits > 0 && s.full_splits > 0, "{s:?}");
+}
+
+/// The results processor's wrong models (`super::split`) are caught, shrunk to a one-job program, and
+/// leave a waveform with the block's `done`.
+#[test]
+fn a_wrong_split_model_is_caught_shrunk_and_leaves_a_vcd() {
+    for (name, wrong) in [
+        (
+            "bundle_split_b12_floor_cycles",
+            super::split::floor_cycles as fn(&_, &_, &_) -> _,
+        ),
+        ("bundle_split_b12_allhit_rays", super::split::allhit_rays),
+    ] {
+        let msg = expect_caught("done", move || {
+            with_big_stack(move || {
+                split_shrinking::<rtl::BundleSplitB12>(
+                    name,
+                    BundleFixFormat::presets()[1],
+                    SPLIT_CASES,
+                    wrong,
+                );
+            })
+        });
+        let program = msg
+            .split("job program [")
+            .nth(1)
+            .expect("the shrunk program");
+        assert_eq!(
+            program
+                .split("\n")
+                .next()
+                .unwrap()
+                .matches("SplitStep")
+                .count(),
+            1,
+            "{name}: not shrunk to one job: {msg}"
         );
     }
 }

@@ -64,27 +64,31 @@ fn rtl_matches_model_b16() {
     rtl_matches_model::<rtl::BundleSplitB16>(preset(2), 20_000, 3);
 }
 
-/// The check can fail: a model that judges each ray with AllHit bounds on the inner box (the two-ray
-/// mode before it was made sound) disagrees with the RTL on some mask, and so does one that counts one
-/// pair clock too few for odd ray counts.
+/// A wrong model: each ray judged with AllHit bounds on the inner box (the two-ray mode before it was
+/// made sound).
+pub(crate) fn allhit_rays(bf: &BundleFixFormat, j: &SplitJob, store: &RayStore) -> SplitResult {
+    let right = split_model(bf, j, store);
+    split_with(
+        || (right.all_hit, right.all_miss),
+        |i| all_hit_fix(bf, &store[i], &j.boxes.inner),
+        j.active as u64,
+    )
+}
+
+/// A wrong model: one pair clock too few for odd ray counts.
+pub(crate) fn floor_cycles(bf: &BundleFixFormat, j: &SplitJob, store: &RayStore) -> SplitResult {
+    let mut r = split_model(bf, j, store);
+    if r.split {
+        r.pair_cycles = 1 + j.active.count_ones() / 2;
+    }
+    r
+}
+
+/// The check can fail: a model that judges each ray with AllHit bounds on the inner box disagrees with
+/// the RTL on some mask, and so does one that counts one pair clock too few for odd ray counts.
 #[test]
 fn a_wrong_model_is_caught() {
     let bf = preset(1);
-    let allhit_rays = |bf: &BundleFixFormat, j: &SplitJob, store: &RayStore| -> SplitResult {
-        let right = split_model(bf, j, store);
-        split_with(
-            || (right.all_hit, right.all_miss),
-            |i| all_hit_fix(bf, &store[i], &j.boxes.inner),
-            j.active as u64,
-        )
-    };
-    let floor_cycles = |bf: &BundleFixFormat, j: &SplitJob, store: &RayStore| -> SplitResult {
-        let mut r = split_model(bf, j, store);
-        if r.split {
-            r.pair_cycles = 1 + j.active.count_ones() / 2;
-        }
-        r
-    };
     let mut dut = SplitRtl::<rtl::BundleSplitB12>::new(&bf);
     let e = run_split(&mut dut, SplitStim::new(bf, 4, 2_000, false, allhit_rays))
         .expect_err("AllHit per ray must be caught");
