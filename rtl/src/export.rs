@@ -4,7 +4,7 @@
 //! after the block and its format (for example `slab_fix_g16_i20f14_t24f6`), so several configurations
 //! can be synthesised together.
 //!
-//! [`export_all`] writes the slab testers and the cull-plane testers that the synthesis report compares
+//! [`export_all`] writes the slab testers (the fixed one at 4 and at 6 clocks) and the cull-plane testers that the synthesis report compares
 //! (`scripts/synth plane_`): the table option `PlaneFix` over b8, b12 and b16 and the fraction option
 //! `PlaneFrac` over b12 and b16 with 1 and 4 planes, and the float `PlaneFloat` with 1 plane.
 
@@ -24,17 +24,50 @@ pub fn verilog_named<B: Block>(uut: &mut B, name: &str) -> String {
         .replace(" top$", &format!(" {name}$"))
 }
 
-/// Module name of the fixed slab tester for a format.
+/// Module name of the default (4-clock) fixed slab tester for a format.
 pub fn slab_fix_module(fmt: &FixFormat) -> String {
-    format!("slab_fix_{}", fmt.name())
+    slab_fix_module_cuts(fmt, crate::slab::fix::SLAB_FIX_CUTS)
 }
 
-/// Verilog of the fixed slab tester for a preset format.
+/// Module name of the fixed slab tester for a format and cut points: the format's name, then the
+/// suffix of the configuration in [`crate::slab::fix::SLAB_FIX_DEPTHS`] (`_p6` for the 6-clock
+/// tester), or `_c` and the cut mask in hex for another.
+pub fn slab_fix_module_cuts(fmt: &FixFormat, cuts: usize) -> String {
+    let suffix = match crate::slab::fix::SLAB_FIX_DEPTHS
+        .iter()
+        .find(|(c, _)| *c == cuts)
+    {
+        Some((_, s)) => s.to_string(),
+        None => format!("_c{cuts:02x}"),
+    };
+    format!("slab_fix_{}{suffix}", fmt.name())
+}
+
+/// Verilog of the fixed slab tester `S` for `fmt`, named after the format and the block's cut points.
+pub fn slab_fix_verilog_of<S: crate::slab::fix::SlabFixIo + Block>(fmt: &FixFormat) -> String {
+    let mut uut = S::for_format(fmt);
+    verilog_named(&mut uut, &slab_fix_module_cuts(fmt, S::CUTS))
+}
+
+/// Verilog of the default fixed slab tester for a preset format.
 pub fn slab_fix_verilog(fmt: &FixFormat) -> Result<String, String> {
-    crate::with_slab_fix!(fmt, S, {
-        let mut uut = S::new(fmt);
-        verilog_named(&mut uut, &slab_fix_module(fmt))
-    })
+    crate::with_slab_fix!(fmt, S, { slab_fix_verilog_of::<S>(fmt) })
+}
+
+/// `(module, Verilog, latency)` of the 6-clock fixed slab testers over the presets b8, b12, b16.
+pub fn slab_fix_deep_verilog() -> Vec<(String, String, usize)> {
+    fn one<S: crate::slab::fix::SlabFixIo + Block>(fmt: FixFormat) -> (String, String, usize) {
+        (
+            slab_fix_module_cuts(&fmt, S::CUTS),
+            slab_fix_verilog_of::<S>(&fmt),
+            S::LATENCY,
+        )
+    }
+    vec![
+        one::<crate::SlabFixB8P6>(FixFormat::b8()),
+        one::<crate::SlabFixB12P6>(FixFormat::b12()),
+        one::<crate::SlabFixB16P6>(FixFormat::b16()),
+    ]
 }
 
 /// Module name of the float slab tester for a format, e.g. `slab_float_e8m23`.
@@ -52,10 +85,7 @@ pub fn slab_float_verilog(f: &golden::format::float::FloatFormat) -> Result<Stri
 
 /// Verilog of the fixed slab tester for any format of the grid ladder (`FixFormat::grid`), for the fit.
 pub fn slab_fix_verilog_ladder(fmt: &FixFormat) -> Result<String, String> {
-    crate::with_slab_fix_ladder!(fmt, S, {
-        let mut uut = S::new(fmt);
-        verilog_named(&mut uut, &slab_fix_module(fmt))
-    })
+    crate::with_slab_fix_ladder!(fmt, S, { slab_fix_verilog_of::<S>(fmt) })
 }
 
 /// Verilog of the float slab tester for any format of the float ladder, for the fit.
@@ -85,6 +115,9 @@ pub fn export_all(dir: &Path) -> std::io::Result<Vec<PathBuf>> {
             slab_fix_verilog(&fmt).expect("presets are instantiated"),
             crate::SLAB_FIX_LATENCY,
         )?;
+    }
+    for (module, v, lat) in slab_fix_deep_verilog() {
+        write(module, v, lat)?;
     }
     for f in crate::SLAB_FLOAT_FORMATS {
         write(

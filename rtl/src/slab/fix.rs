@@ -1,4 +1,5 @@
-//! `SlabFix`: the fixed-point AABB slab tester, fully pipelined (one test per clock), 4 clocks of latency.
+//! `SlabFix`: the fixed-point AABB slab tester, fully pipelined (one test per clock), of 4 clocks
+//! ([`SLAB_FIX_CUTS`]) to 6 clocks ([`SLAB_FIX_CUTS_DEEP`]) of latency as its `CUTS` parameter chooses.
 //!
 //! Bit for bit the datapath of `golden::slab::fix::slab_fix` (read its documentation for the
 //! arithmetic and the conservativeness argument); the ports mirror `golden::format::fixed::{FixRay, FixBox}` and
@@ -25,20 +26,30 @@
 //! by type in the Rust API: [`SlabFix::drive`] takes a [`FixRay`] and a [`FixBox`], [`SlabFix::result`]
 //! gives a [`SlabFixOut`].
 //!
-//! # Outputs (registered, [`SLAB_FIX_LATENCY`] clocks after the inputs)
+//! # Outputs (registered, [`slab_fix_latency`]`(CUTS)` clocks after the inputs: 4 by default)
 //! - `valid_out`, `tag_out`, `hit`, `t_entry`, `t_exit`.
 //!
-//! # Stages
-//! 1. `_q1`: per axis ([`AxisDist`]) the distances `e`, `x` to the near and far planes in `D` bits, and
-//!    the empty-box flag.
-//! 2. `_q2`: six [`MulRound`] units: `entry_a` floored, `exit_a` ceiled, the inverse bound chosen by the
-//!    sign of the distance.
-//! 3. `_q3`: first level of the max/min trees with `t_min`/`t_max`.
-//! 4. `_q4`: final max/min and the hit decision; these registers drive the outputs.
+//! # Pipeline
+//! Six steps of logic, each followed by a cut point ([`cut`]); `CUTS` sets which are registers, one
+//! clock each (the outputs always are), so the latency is the number of set bits:
+//! 1. per axis ([`AxisDist`]) the distances `e`, `x` to the near and far planes in `D` bits, and the
+//!    empty-box flag; cut [`cut::DIST`] (`_q1`);
+//! 2. each product's inverse bound chosen by the sign of its distance; cut [`cut::OPERANDS`] (`_qo`);
+//! 3. six multiplies ([`MulRound`]); cut [`cut::PRODUCT`] (inside each `MulRound`; side data `_qp`);
+//! 4. the products scaled, rounded (`entry` floored, `exit` ceiled) and saturated to t codes; cut
+//!    [`cut::BOUND`] (`_q2`);
+//! 5. the first level of the max/min trees with `t_min`/`t_max`; cut [`cut::TREE`] (`_q3`);
+//! 6. the final max/min and the hit decision; cut [`cut::OUT`] (`_q4`), which drives the outputs.
+//!
+//! The default (4 clocks) puts steps 2 to 4, a whole multiply-and-round, in one clock, the critical path
+//! of the tester on an FPGA; the deep configuration (6 clocks) gives the multiplies a clock of their own,
+//! registered operands in front and a registered product behind, as a DSP block's input and output
+//! registers would be.
 //!
 //! Signed comparisons are unsigned comparisons of the sign-flipped codes: rust-hdl's `Signed` compares
 //! through big integers in simulation and emits unsized `$signed` casts in Verilog.
 
+use crate::cut::Cut;
 use crate::io::SlabIo;
 use crate::slab::axis_dist::AxisDist;
 use crate::slab::mul_round::MulRound;
@@ -46,8 +57,44 @@ use golden::format::fixed::{FixBox, FixFormat, FixRay};
 use golden::slab::fix::SlabFixOut;
 use rust_hdl::prelude::*;
 
-/// Clocks from a test entering `SlabFix` to its result leaving.
-pub const SLAB_FIX_LATENCY: usize = 4;
+/// The cut points of the fixed slab tester: one bit each of its `CUTS` parameter, a register where the
+/// bit is set and a wire where it is clear ([`crate::cut::Cut`]). In pipeline order, with the names of
+/// their registers:
+pub mod cut {
+    /// After the distances (`_q1`).
+    pub const DIST: usize = 1 << 0;
+    /// After the choice of each product's inverse bound: the multipliers' operands (`_qo`).
+    pub const OPERANDS: usize = 1 << 1;
+    /// After the multiplies: the products, inside each `MulRound` (`p_q`; the side data `_qp`).
+    pub const PRODUCT: usize = 1 << 2;
+    /// After the rounding and saturation to t codes (`_q2`).
+    pub const BOUND: usize = 1 << 3;
+    /// After the first level of the max/min trees (`_q3`).
+    pub const TREE: usize = 1 << 4;
+    /// The outputs (`_q4`): always a register, so that every output is registered.
+    pub const OUT: usize = 1 << 5;
+    /// Every cut point.
+    pub const ALL: usize = (1 << 6) - 1;
+}
+
+/// The cut points of the 4-clock tester (the default of [`SlabFix`]'s `CUTS`): distances, bounds, tree,
+/// outputs. A whole multiply, round and saturate is one clock.
+pub const SLAB_FIX_CUTS: usize = cut::DIST | cut::BOUND | cut::TREE | cut::OUT;
+
+/// The cut points of the 6-clock tester: every cut, the multipliers' operands and products registered.
+pub const SLAB_FIX_CUTS_DEEP: usize = cut::ALL;
+
+/// Clocks from a test entering a `SlabFix` with cut points `cuts` to its result leaving: one per cut.
+pub const fn slab_fix_latency(cuts: usize) -> usize {
+    (cuts & cut::ALL).count_ones() as usize
+}
+
+/// Clocks from a test entering the default `SlabFix` ([`SLAB_FIX_CUTS`]) to its result leaving.
+pub const SLAB_FIX_LATENCY: usize = slab_fix_latency(SLAB_FIX_CUTS);
+
+/// The configurations that are built (exported, tested, timed): `(cuts, name suffix)`; the module name
+/// of a configuration is the format's with this suffix (none for the default).
+pub const SLAB_FIX_DEPTHS: [(usize, &str); 2] = [(SLAB_FIX_CUTS, ""), (SLAB_FIX_CUTS_DEEP, "_p6")];
 
 /// Width of the opaque tag that travels with every test.
 pub const TAG_BITS: usize = 16;
@@ -62,9 +109,15 @@ pub fn sext(v: u64, n: usize) -> i64 {
     ((v << (64 - n)) as i64) >> (64 - n)
 }
 
-/// The fixed-point slab tester; see the module documentation.
+/// The fixed-point slab tester; see the module documentation. `CUTS` chooses its registers ([`cut`]).
 #[derive(LogicBlock)]
-pub struct SlabFix<const G: usize, const D: usize, const I: usize, const T: usize> {
+pub struct SlabFix<
+    const G: usize,
+    const D: usize,
+    const I: usize,
+    const T: usize,
+    const CUTS: usize = SLAB_FIX_CUTS,
+> {
     pub clock: Signal<In, Clock>,
     pub valid_in: Signal<In, Bit>,
     pub tag_in: Signal<In, Bits<TAG_BITS>>,
@@ -87,47 +140,64 @@ pub struct SlabFix<const G: usize, const D: usize, const I: usize, const T: usiz
     sign_t: Constant<Bits<T>>,
     t_pinf: Constant<Bits<T>>,
     t_ninf: Constant<Bits<T>>,
-    // stage 1
+    // distances
     axis: [AxisDist<G, D>; 3],
     empty: Signal<Local, Bit>,
-    e_q1: [DFF<Bits<D>>; 3],
-    x_q1: [DFF<Bits<D>>; 3],
-    m_lo_q1: [DFF<Bits<I>>; 3],
-    m_hi_q1: [DFF<Bits<I>>; 3],
-    t_min_q1: DFF<Bits<T>>,
-    t_max_q1: DFF<Bits<T>>,
-    empty_q1: DFF<Bit>,
-    valid_q1: DFF<Bit>,
-    tag_q1: DFF<Bits<TAG_BITS>>,
-    // stage 2
+    e_q1: [Cut<Bits<D>>; 3],
+    x_q1: [Cut<Bits<D>>; 3],
+    m_lo_q1: [Cut<Bits<I>>; 3],
+    m_hi_q1: [Cut<Bits<I>>; 3],
+    t_min_q1: Cut<Bits<T>>,
+    t_max_q1: Cut<Bits<T>>,
+    empty_q1: Cut<Bit>,
+    valid_q1: Cut<Bit>,
+    tag_q1: Cut<Bits<TAG_BITS>>,
+    // operands
+    ea_qo: [Cut<Bits<D>>; 3],
+    em_qo: [Cut<Bits<I>>; 3],
+    xa_qo: [Cut<Bits<D>>; 3],
+    xm_qo: [Cut<Bits<I>>; 3],
+    t_min_qo: Cut<Bits<T>>,
+    t_max_qo: Cut<Bits<T>>,
+    empty_qo: Cut<Bit>,
+    valid_qo: Cut<Bit>,
+    tag_qo: Cut<Bits<TAG_BITS>>,
+    // products (inside the MulRounds) and bounds
     mul_entry: [MulRound<D, I, T>; 3],
     mul_exit: [MulRound<D, I, T>; 3],
-    entry_q2: [DFF<Bits<T>>; 3],
-    exit_q2: [DFF<Bits<T>>; 3],
-    t_min_q2: DFF<Bits<T>>,
-    t_max_q2: DFF<Bits<T>>,
-    empty_q2: DFF<Bit>,
-    valid_q2: DFF<Bit>,
-    tag_q2: DFF<Bits<TAG_BITS>>,
-    // stage 3
-    entry_a_q3: DFF<Bits<T>>,
-    entry_b_q3: DFF<Bits<T>>,
-    exit_a_q3: DFF<Bits<T>>,
-    exit_b_q3: DFF<Bits<T>>,
-    empty_q3: DFF<Bit>,
-    valid_q3: DFF<Bit>,
-    tag_q3: DFF<Bits<TAG_BITS>>,
-    // stage 4
+    t_min_qp: Cut<Bits<T>>,
+    t_max_qp: Cut<Bits<T>>,
+    empty_qp: Cut<Bit>,
+    valid_qp: Cut<Bit>,
+    tag_qp: Cut<Bits<TAG_BITS>>,
+    entry_q2: [Cut<Bits<T>>; 3],
+    exit_q2: [Cut<Bits<T>>; 3],
+    t_min_q2: Cut<Bits<T>>,
+    t_max_q2: Cut<Bits<T>>,
+    empty_q2: Cut<Bit>,
+    valid_q2: Cut<Bit>,
+    tag_q2: Cut<Bits<TAG_BITS>>,
+    // tree
+    entry_a_q3: Cut<Bits<T>>,
+    entry_b_q3: Cut<Bits<T>>,
+    exit_a_q3: Cut<Bits<T>>,
+    exit_b_q3: Cut<Bits<T>>,
+    empty_q3: Cut<Bit>,
+    valid_q3: Cut<Bit>,
+    tag_q3: Cut<Bits<TAG_BITS>>,
+    // outputs
     entry: Signal<Local, Bits<T>>,
     exit: Signal<Local, Bits<T>>,
-    entry_q4: DFF<Bits<T>>,
-    exit_q4: DFF<Bits<T>>,
-    hit_q4: DFF<Bit>,
-    valid_q4: DFF<Bit>,
-    tag_q4: DFF<Bits<TAG_BITS>>,
+    entry_q4: Cut<Bits<T>>,
+    exit_q4: Cut<Bits<T>>,
+    hit_q4: Cut<Bit>,
+    valid_q4: Cut<Bit>,
+    tag_q4: Cut<Bits<TAG_BITS>>,
 }
 
-impl<const G: usize, const D: usize, const I: usize, const T: usize> SlabFix<G, D, I, T> {
+impl<const G: usize, const D: usize, const I: usize, const T: usize, const CUTS: usize>
+    SlabFix<G, D, I, T, CUTS>
+{
     /// A tester for `fmt`, whose widths must equal the parameters (`D = G + 1`).
     pub fn new(fmt: &FixFormat) -> Self {
         assert!(
@@ -135,7 +205,23 @@ impl<const G: usize, const D: usize, const I: usize, const T: usize> SlabFix<G, 
             "SlabFix<{G},{D},{I},{T}> does not match format {}",
             fmt.name()
         );
-        let mr = |ceil| std::array::from_fn(|_| MulRound::new(ceil, fmt.shift() as usize));
+        assert!(
+            CUTS & cut::OUT != 0 && CUTS & !cut::ALL == 0,
+            "SlabFix cut points {CUTS:#x}: the outputs must be registered, and only the cuts of \
+             rtl::slab::fix::cut exist"
+        );
+        let on = |c: usize| CUTS & c != 0;
+        let mr = |ceil| {
+            std::array::from_fn(|_| MulRound::new(ceil, fmt.shift() as usize, on(cut::PRODUCT)))
+        };
+        let (d, o, p, b, t, q) = (
+            on(cut::DIST),
+            on(cut::OPERANDS),
+            on(cut::PRODUCT),
+            on(cut::BOUND),
+            on(cut::TREE),
+            on(cut::OUT),
+        );
         Self {
             clock: Default::default(),
             valid_in: Default::default(),
@@ -160,63 +246,80 @@ impl<const G: usize, const D: usize, const I: usize, const T: usize> SlabFix<G, 
             t_ninf: Constant::new(bits::<T>(1 << (T - 1))),
             axis: Default::default(),
             empty: Default::default(),
-            e_q1: Default::default(),
-            x_q1: Default::default(),
-            m_lo_q1: Default::default(),
-            m_hi_q1: Default::default(),
-            t_min_q1: Default::default(),
-            t_max_q1: Default::default(),
-            empty_q1: Default::default(),
-            valid_q1: Default::default(),
-            tag_q1: Default::default(),
+            e_q1: Cut::array(d),
+            x_q1: Cut::array(d),
+            m_lo_q1: Cut::array(d),
+            m_hi_q1: Cut::array(d),
+            t_min_q1: Cut::new(d),
+            t_max_q1: Cut::new(d),
+            empty_q1: Cut::new(d),
+            valid_q1: Cut::new(d),
+            tag_q1: Cut::new(d),
+            ea_qo: Cut::array(o),
+            em_qo: Cut::array(o),
+            xa_qo: Cut::array(o),
+            xm_qo: Cut::array(o),
+            t_min_qo: Cut::new(o),
+            t_max_qo: Cut::new(o),
+            empty_qo: Cut::new(o),
+            valid_qo: Cut::new(o),
+            tag_qo: Cut::new(o),
             mul_entry: mr(false),
             mul_exit: mr(true),
-            entry_q2: Default::default(),
-            exit_q2: Default::default(),
-            t_min_q2: Default::default(),
-            t_max_q2: Default::default(),
-            empty_q2: Default::default(),
-            valid_q2: Default::default(),
-            tag_q2: Default::default(),
-            entry_a_q3: Default::default(),
-            entry_b_q3: Default::default(),
-            exit_a_q3: Default::default(),
-            exit_b_q3: Default::default(),
-            empty_q3: Default::default(),
-            valid_q3: Default::default(),
-            tag_q3: Default::default(),
+            t_min_qp: Cut::new(p),
+            t_max_qp: Cut::new(p),
+            empty_qp: Cut::new(p),
+            valid_qp: Cut::new(p),
+            tag_qp: Cut::new(p),
+            entry_q2: Cut::array(b),
+            exit_q2: Cut::array(b),
+            t_min_q2: Cut::new(b),
+            t_max_q2: Cut::new(b),
+            empty_q2: Cut::new(b),
+            valid_q2: Cut::new(b),
+            tag_q2: Cut::new(b),
+            entry_a_q3: Cut::new(t),
+            entry_b_q3: Cut::new(t),
+            exit_a_q3: Cut::new(t),
+            exit_b_q3: Cut::new(t),
+            empty_q3: Cut::new(t),
+            valid_q3: Cut::new(t),
+            tag_q3: Cut::new(t),
             entry: Default::default(),
             exit: Default::default(),
-            entry_q4: Default::default(),
-            exit_q4: Default::default(),
-            hit_q4: Default::default(),
-            valid_q4: Default::default(),
-            tag_q4: Default::default(),
+            entry_q4: Cut::new(q),
+            exit_q4: Cut::new(q),
+            hit_q4: Cut::new(q),
+            valid_q4: Cut::new(q),
+            tag_q4: Cut::new(q),
         }
     }
 }
 
 /// A fixed slab tester of any width, built for a format, so drivers need not spell the widths.
 pub trait SlabFixIo: SlabIo<Ray = FixRay, Box = FixBox, Out = SlabFixOut> {
+    /// The block's cut points ([`cut`]).
+    const CUTS: usize;
     /// A tester for `fmt` (whose widths must match the block's).
     fn for_format(fmt: &FixFormat) -> Self;
 }
 
-impl<const G: usize, const D: usize, const I: usize, const T: usize> SlabFixIo
-    for SlabFix<G, D, I, T>
+impl<const G: usize, const D: usize, const I: usize, const T: usize, const CUTS: usize> SlabFixIo
+    for SlabFix<G, D, I, T, CUTS>
 {
+    const CUTS: usize = CUTS;
     fn for_format(fmt: &FixFormat) -> Self {
         Self::new(fmt)
     }
 }
 
-impl<const G: usize, const D: usize, const I: usize, const T: usize> SlabIo
-    for SlabFix<G, D, I, T>
+impl<const G: usize, const D: usize, const I: usize, const T: usize, const CUTS: usize> SlabIo
+    for SlabFix<G, D, I, T, CUTS>
 {
     type Ray = FixRay;
     type Box = FixBox;
     type Out = SlabFixOut;
-    const LATENCY: usize = SLAB_FIX_LATENCY;
+    const LATENCY: usize = slab_fix_latency(CUTS);
 
     fn set_clock(&mut self, high: bool) {
         self.clock.next = Clock { clk: high };
@@ -269,7 +372,9 @@ impl<const G: usize, const D: usize, const I: usize, const T: usize> SlabIo
     }
 }
 
-impl<const G: usize, const D: usize, const I: usize, const T: usize> Logic for SlabFix<G, D, I, T> {
+impl<const G: usize, const D: usize, const I: usize, const T: usize, const CUTS: usize> Logic
+    for SlabFix<G, D, I, T, CUTS>
+{
     #[hdl_gen]
     fn update(&mut self) {
         // Clocks of every register.
@@ -278,16 +383,23 @@ impl<const G: usize, const D: usize, const I: usize, const T: usize> Logic for S
             self.x_q1[i].clock.next = self.clock.val();
             self.m_lo_q1[i].clock.next = self.clock.val();
             self.m_hi_q1[i].clock.next = self.clock.val();
+            self.ea_qo[i].clock.next = self.clock.val();
+            self.em_qo[i].clock.next = self.clock.val();
+            self.xa_qo[i].clock.next = self.clock.val();
+            self.xm_qo[i].clock.next = self.clock.val();
+            self.mul_entry[i].clock.next = self.clock.val();
+            self.mul_exit[i].clock.next = self.clock.val();
             self.entry_q2[i].clock.next = self.clock.val();
             self.exit_q2[i].clock.next = self.clock.val();
         }
         dff_setup!(
-            self, clock, t_min_q1, t_max_q1, empty_q1, valid_q1, tag_q1, t_min_q2, t_max_q2,
-            empty_q2, valid_q2, tag_q2, entry_a_q3, entry_b_q3, exit_a_q3, exit_b_q3, empty_q3,
-            valid_q3, tag_q3, entry_q4, exit_q4, hit_q4, valid_q4, tag_q4
+            self, clock, t_min_q1, t_max_q1, empty_q1, valid_q1, tag_q1, t_min_qo, t_max_qo,
+            empty_qo, valid_qo, tag_qo, t_min_qp, t_max_qp, empty_qp, valid_qp, tag_qp, t_min_q2,
+            t_max_q2, empty_q2, valid_q2, tag_q2, entry_a_q3, entry_b_q3, exit_a_q3, exit_b_q3,
+            empty_q3, valid_q3, tag_q3, entry_q4, exit_q4, hit_q4, valid_q4, tag_q4
         );
 
-        // Stage 1: distances in the direction of travel, empty-box flag.
+        // Distances in the direction of travel, empty-box flag.
         self.empty.next = false;
         for i in 0..3 {
             self.axis[i].lo.next = self.box_lo[i].val();
@@ -309,30 +421,48 @@ impl<const G: usize, const D: usize, const I: usize, const T: usize> Logic for S
         self.valid_q1.d.next = self.valid_in.val();
         self.tag_q1.d.next = self.tag_in.val();
 
-        // Stage 2: scaled products, the inverse bound picked by the sign of the distance.
+        // Operands: the inverse bound of each product picked by the sign of its distance.
         for i in 0..3 {
-            self.mul_entry[i].a.next = self.e_q1[i].q.val();
-            self.mul_exit[i].a.next = self.x_q1[i].q.val();
+            self.ea_qo[i].d.next = self.e_q1[i].q.val();
+            self.xa_qo[i].d.next = self.x_q1[i].q.val();
             if self.e_q1[i].q.val() >= self.sign_d.val() {
-                self.mul_entry[i].m.next = self.m_hi_q1[i].q.val();
+                self.em_qo[i].d.next = self.m_hi_q1[i].q.val();
             } else {
-                self.mul_entry[i].m.next = self.m_lo_q1[i].q.val();
+                self.em_qo[i].d.next = self.m_lo_q1[i].q.val();
             }
             if self.x_q1[i].q.val() >= self.sign_d.val() {
-                self.mul_exit[i].m.next = self.m_lo_q1[i].q.val();
+                self.xm_qo[i].d.next = self.m_lo_q1[i].q.val();
             } else {
-                self.mul_exit[i].m.next = self.m_hi_q1[i].q.val();
+                self.xm_qo[i].d.next = self.m_hi_q1[i].q.val();
             }
+        }
+        self.t_min_qo.d.next = self.t_min_q1.q.val();
+        self.t_max_qo.d.next = self.t_max_q1.q.val();
+        self.empty_qo.d.next = self.empty_q1.q.val();
+        self.valid_qo.d.next = self.valid_q1.q.val();
+        self.tag_qo.d.next = self.tag_q1.q.val();
+
+        // Products (registered inside the MulRounds at the product cut), rounded and saturated bounds.
+        for i in 0..3 {
+            self.mul_entry[i].a.next = self.ea_qo[i].q.val();
+            self.mul_entry[i].m.next = self.em_qo[i].q.val();
+            self.mul_exit[i].a.next = self.xa_qo[i].q.val();
+            self.mul_exit[i].m.next = self.xm_qo[i].q.val();
             self.entry_q2[i].d.next = self.mul_entry[i].y.val();
             self.exit_q2[i].d.next = self.mul_exit[i].y.val();
         }
-        self.t_min_q2.d.next = self.t_min_q1.q.val();
-        self.t_max_q2.d.next = self.t_max_q1.q.val();
-        self.empty_q2.d.next = self.empty_q1.q.val();
-        self.valid_q2.d.next = self.valid_q1.q.val();
-        self.tag_q2.d.next = self.tag_q1.q.val();
+        self.t_min_qp.d.next = self.t_min_qo.q.val();
+        self.t_max_qp.d.next = self.t_max_qo.q.val();
+        self.empty_qp.d.next = self.empty_qo.q.val();
+        self.valid_qp.d.next = self.valid_qo.q.val();
+        self.tag_qp.d.next = self.tag_qo.q.val();
+        self.t_min_q2.d.next = self.t_min_qp.q.val();
+        self.t_max_q2.d.next = self.t_max_qp.q.val();
+        self.empty_q2.d.next = self.empty_qp.q.val();
+        self.valid_q2.d.next = self.valid_qp.q.val();
+        self.tag_q2.d.next = self.tag_qp.q.val();
 
-        // Stage 3: first level of the max (entry) and min (exit) trees.
+        // First level of the max (entry) and min (exit) trees.
         if (self.t_min_q2.q.val() ^ self.sign_t.val())
             > (self.entry_q2[0].q.val() ^ self.sign_t.val())
         {
@@ -365,7 +495,7 @@ impl<const G: usize, const D: usize, const I: usize, const T: usize> Logic for S
         self.valid_q3.d.next = self.valid_q2.q.val();
         self.tag_q3.d.next = self.tag_q2.q.val();
 
-        // Stage 4: final max/min and the hit decision.
+        // Final max/min and the hit decision.
         if (self.entry_a_q3.q.val() ^ self.sign_t.val())
             > (self.entry_b_q3.q.val() ^ self.sign_t.val())
         {

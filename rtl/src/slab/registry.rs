@@ -11,6 +11,14 @@ pub type SlabFixB12 = SlabFix<12, 13, 16, 20>;
 /// The slab tester for `golden::format::fixed::FixFormat::b16()` (the same type as `SlabFixG16`).
 pub type SlabFixB16 = SlabFix<16, 17, 20, 24>;
 
+/// The 6-clock slab tester for b8 ([`super::fix::SLAB_FIX_CUTS_DEEP`]: multiplies with registered
+/// operands and products).
+pub type SlabFixB8P6 = SlabFix<8, 9, 12, 14, { super::fix::SLAB_FIX_CUTS_DEEP }>;
+/// The 6-clock slab tester for b12.
+pub type SlabFixB12P6 = SlabFix<12, 13, 16, 20, { super::fix::SLAB_FIX_CUTS_DEEP }>;
+/// The 6-clock slab tester for b16.
+pub type SlabFixB16P6 = SlabFix<16, 17, 20, 24, { super::fix::SLAB_FIX_CUTS_DEEP }>;
+
 /// Runs `$body` with `$t` bound to the `SlabFix` type of a preset format, or returns an error for a
 /// format without an instantiated block (const generics need the widths at compile time).
 #[macro_export]

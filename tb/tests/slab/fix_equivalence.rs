@@ -1,5 +1,6 @@
 //! Randomized equivalence: the rust-hdl `SlabFix` against `golden::slab::fix::slab_fix`, bit for bit, with
-//! latency and tag order checked by `tb::dut::run_checked`. 10,000 proptest cases (bursts of 1 to 8
+//! latency and tag order checked by `tb::dut::run_checked`, at 4 clocks (b8, b12, b16) and at 6 (b12,
+//! b16). 10,000 proptest cases (bursts of 1 to 8
 //! tests with bubbles) per width configuration; a failing case is shrunk and written out as a VCD named
 //! after the test and case.
 
@@ -50,6 +51,20 @@ fn slab_fix_b12_matches_model() {
 #[test]
 fn slab_fix_b16_matches_model() {
     equivalence::<rtl::SlabFixB16>(FixFormat::b16(), "slab_fix_b16", |f, v| {
+        slab_fix(f, &v.0, &v.1)
+    });
+}
+
+#[test]
+fn slab_fix_b12_6_clocks_matches_model() {
+    equivalence::<rtl::SlabFixB12P6>(FixFormat::b12(), "slab_fix_b12_p6", |f, v| {
+        slab_fix(f, &v.0, &v.1)
+    });
+}
+
+#[test]
+fn slab_fix_b16_6_clocks_matches_model() {
+    equivalence::<rtl::SlabFixB16P6>(FixFormat::b16(), "slab_fix_b16_p6", |f, v| {
         slab_fix(f, &v.0, &v.1)
     });
 }

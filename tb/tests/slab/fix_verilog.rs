@@ -1,28 +1,42 @@
-//! The exported Verilog of every preset slab tester: lint-clean under `verilator --lint-only -Wall` (with
+//! The exported Verilog of every preset slab tester, at 4 and at 6 clocks: lint-clean under `verilator --lint-only -Wall` (with
 //! the one-line waivers in rtl/lint/verilator_waiver.vlt), accepted by Icarus, and bit-exact with the
 //! rust-hdl simulation and the model in Verilator over 100,000 vectors per configuration.
 //! The tools are installed by scripts/test; a missing tool fails these tests rather than skipping them.
 
 use golden::format::fixed::FixFormat;
 use golden::slab::gen::GenKind;
-use rtl::export::{slab_fix_module, slab_fix_verilog};
+use rtl::export::{
+    slab_fix_deep_verilog, slab_fix_module, slab_fix_module_cuts, slab_fix_verilog_of,
+};
 use rtl::slab::fix::SlabFixIo;
+use rust_hdl::prelude::Block;
 use std::path::PathBuf;
 use tb::campaign::slab_vectors;
 use tb::slab::ports::xsim;
 
-fn export(fmt: &FixFormat) -> (String, PathBuf) {
-    let v = slab_fix_verilog(fmt).unwrap();
-    let path = tb::verilog_tools::write(&v, &slab_fix_module(fmt));
-    (v, path)
+/// `(module, Verilog, path)` of every exported fixed slab tester: the presets at 4 and at 6 clocks.
+fn every_module() -> Vec<(String, String, PathBuf)> {
+    let mut all = vec![];
+    for fmt in FixFormat::presets() {
+        let v = rtl::export::slab_fix_verilog(&fmt).unwrap();
+        all.push((slab_fix_module(&fmt), v));
+    }
+    all.extend(slab_fix_deep_verilog().into_iter().map(|(m, v, _)| (m, v)));
+    all.into_iter()
+        .map(|(m, v)| {
+            let path = tb::verilog_tools::write(&v, &m);
+            (m, v, path)
+        })
+        .collect()
 }
 
 #[test]
 fn exported_verilog_is_lint_clean() {
-    for fmt in FixFormat::presets() {
-        let (v, path) = export(&fmt);
+    let all = every_module();
+    assert_eq!(all.len(), 6);
+    for (m, v, path) in all {
         assert!(
-            v.contains(&format!("module {}(", slab_fix_module(&fmt))),
+            v.contains(&format!("module {m}(")),
             "module name carries the format"
         );
         tb::verilog_tools::lint(&path).unwrap_or_else(|e| panic!("{e}"));
@@ -31,17 +45,24 @@ fn exported_verilog_is_lint_clean() {
 
 #[test]
 fn icarus_accepts_exported_verilog() {
-    for fmt in FixFormat::presets() {
-        let (_, path) = export(&fmt);
+    for (_, _, path) in every_module() {
         tb::verilog_tools::icarus(&path).unwrap_or_else(|e| panic!("{e}"));
     }
 }
 
+/// The Verilog of block `S` for `fmt`, written to `out/verilog`, with its module name.
+fn export<S: SlabFixIo + Block>(fmt: &FixFormat) -> (String, String) {
+    let v = slab_fix_verilog_of::<S>(fmt);
+    let m = slab_fix_module_cuts(fmt, S::CUTS);
+    tb::verilog_tools::write(&v, &m);
+    (v, m)
+}
+
 const XSIM_VECTORS: u64 = 100_000;
 
-fn cross_simulate<S: SlabFixIo>(fmt: FixFormat, seed: u64) {
-    let (v, _) = export(&fmt);
-    let h = tb::verilator::build(&v, &slab_fix_module(&fmt), &tb::out_dir().join("verilator"))
+fn cross_simulate<S: SlabFixIo + Block>(fmt: FixFormat, seed: u64) {
+    let (v, m) = export::<S>(&fmt);
+    let h = tb::verilator::build(&v, &m, &tb::out_dir().join("verilator"))
         .unwrap_or_else(|e| panic!("{e}"));
     let vectors = slab_vectors(fmt, GenKind::Mixed, seed, XSIM_VECTORS, true);
     let stats = xsim(fmt, || S::for_format(&fmt), &h, vectors, u64::MAX, |_| {})
@@ -69,17 +90,23 @@ fn verilator_matches_rtl_and_model_b16() {
     cross_simulate::<rtl::SlabFixB16>(FixFormat::b16(), 3);
 }
 
+#[test]
+fn verilator_matches_rtl_and_model_b12_6_clocks() {
+    cross_simulate::<rtl::SlabFixB12P6>(FixFormat::b12(), 5);
+}
+
+#[test]
+fn verilator_matches_rtl_and_model_b16_6_clocks() {
+    cross_simulate::<rtl::SlabFixB16P6>(FixFormat::b16(), 6);
+}
+
 /// Cross-simulation can fail: driving the b8 Verilog as if it were the b12 tester is caught within a few
 /// cycles, and the failure leaves a waveform of the last cycles.
 #[test]
 fn a_wrong_verilog_is_caught_and_leaves_a_vcd() {
-    let (v, _) = export(&FixFormat::b8());
-    let h = tb::verilator::build(
-        &v,
-        &slab_fix_module(&FixFormat::b8()),
-        &tb::out_dir().join("verilator"),
-    )
-    .unwrap_or_else(|e| panic!("{e}"));
+    let (v, m) = export::<rtl::SlabFixB8>(&FixFormat::b8());
+    let h = tb::verilator::build(&v, &m, &tb::out_dir().join("verilator"))
+        .unwrap_or_else(|e| panic!("{e}"));
     let b12 = FixFormat::b12();
     let vectors = slab_vectors(b12, GenKind::Mixed, 4, 10_000, true);
     let err = xsim(

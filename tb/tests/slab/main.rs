@@ -10,4 +10,5 @@ mod float_conservative;
 mod float_corners;
 mod float_equivalence;
 mod float_verilog;
+mod mul_round;
 mod vcd;

@@ -1,6 +1,6 @@
 //! Waveforms: the rust-hdl simulation writes a VCD on request; reading it back with the `vcd` crate,
 //! for the fixed and the float tester,
-//! `valid_out` rises exactly SLAB_FIX_LATENCY clock edges after `valid_in`, for single tests separated
+//! `valid_out` rises exactly the block's latency (4 clocks, 6 for the deep fixed tester) clock edges after `valid_in`, for single tests separated
 //! by bubbles and for a back-to-back burst.
 
 use golden::format::fixed::FixFormat;
@@ -13,8 +13,23 @@ use tb::vcd_read::read_trace;
 
 #[test]
 fn valid_leaves_latency_clocks_after_it_enters() {
+    valid_latency::<rtl::SlabFixB12>("slab_fix_b12_latency.vcd", 4);
+}
+
+/// The 6-clock tester: `valid_out` rises 6 edges after `valid_in`, as `slab_fix_latency` says.
+#[test]
+fn valid_leaves_6_clocks_after_it_enters_the_deep_tester() {
+    assert_eq!(
+        rtl::slab::fix::slab_fix_latency(rtl::slab::fix::SLAB_FIX_CUTS_DEEP),
+        6
+    );
+    valid_latency::<rtl::SlabFixB12P6>("slab_fix_b12_p6_latency.vcd", 6);
+}
+
+fn valid_latency<S: rtl::slab::fix::SlabFixIo>(name: &str, latency: usize) {
+    assert_eq!(S::LATENCY, latency);
     let fmt = FixFormat::b12();
-    let path = tb::out_dir().join("vcd").join("slab_fix_b12_latency.vcd");
+    let path = tb::out_dir().join("vcd").join(name);
     let tests: Vec<_> = slab_vectors(fmt, GenKind::Mixed, 11, 6, false).collect();
     // Three isolated tests (each followed by 6 bubbles), then three back to back.
     let mut stream = vec![];
@@ -24,7 +39,7 @@ fn valid_leaves_latency_clocks_after_it_enters() {
     }
     stream.extend(tests[3..].iter().cloned());
     {
-        let mut dut = SlabFixRtl::<rtl::SlabFixB12>::with_vcd(&fmt, &path).unwrap();
+        let mut dut = SlabFixRtl::<S>::with_vcd(&fmt, &path).unwrap();
         let n = run_checked(&mut dut, stream, |v| slab_fix(&fmt, &v.0, &v.1))
             .unwrap_or_else(|e| panic!("{e}"));
         assert_eq!(n, 6);
@@ -32,7 +47,7 @@ fn valid_leaves_latency_clocks_after_it_enters() {
     let trace = read_trace(&path, &["valid_in", "valid_out"]).unwrap();
     // Isolated tests: one rise each; the burst: one more rise.
     trace
-        .check_valid_latency(4, rtl::SLAB_FIX_LATENCY)
+        .check_valid_latency(4, latency)
         .unwrap_or_else(|e| panic!("{e}"));
 }
 

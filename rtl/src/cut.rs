@@ -1,0 +1,84 @@
+//! `Cut`: a named cut point of a pipeline, a register or a wire as the block's configuration chooses.
+//!
+//! A tester whose pipeline depth is a parameter (as FPnew's `NumPipeRegs` and the stage split of
+//! Berkeley HardFloat make theirs) places a `Cut` wherever a register may go, and builds it with
+//! [`Cut::new`]`(on)` from its configuration. With `on` the output `q` is `d` one clock later; without,
+//! `q` is `d` in the same clock and the register's output is unused (synthesis removes it). The choice
+//! is a constant of the instance (a Verilog `localparam`), so the exported module is the pipeline the
+//! configuration names, and the rust-hdl simulation runs the same structure.
+//!
+//! # Inputs
+//! `clock`, `d`.
+//! # Outputs
+//! `q`: `d` of one clock ago (a register), or `d` (a wire).
+
+use rust_hdl::prelude::*;
+
+/// A register or a wire; see the module documentation.
+#[derive(LogicBlock)]
+pub struct Cut<T: Synth> {
+    pub clock: Signal<In, Clock>,
+    pub d: Signal<In, T>,
+    pub q: Signal<Out, T>,
+    r: DFF<T>,
+    registered: Constant<Bit>,
+}
+
+impl<T: Synth> Cut<T> {
+    /// A register (`on`) or a wire.
+    pub fn new(on: bool) -> Self {
+        Cut {
+            clock: Default::default(),
+            d: Default::default(),
+            q: Default::default(),
+            r: Default::default(),
+            registered: Constant::new(on),
+        }
+    }
+
+    /// An array of `N` cuts, all registers (`on`) or all wires.
+    pub fn array<const N: usize>(on: bool) -> [Self; N] {
+        std::array::from_fn(|_| Self::new(on))
+    }
+}
+
+impl<T: Synth> Logic for Cut<T> {
+    #[hdl_gen]
+    fn update(&mut self) {
+        self.r.clock.next = self.clock.val();
+        self.r.d.next = self.d.val();
+        if self.registered.val() {
+            self.q.next = self.r.q.val();
+        } else {
+            self.q.next = self.d.val();
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// Clocks a cut with `d` and returns `q` before and after the rising edge.
+    fn edge(c: &mut Cut<Bits<8>>, d: u64) -> (u64, u64) {
+        c.d.next = bits::<8>(d);
+        c.clock.next = Clock { clk: false };
+        assert!(simulate(c, 100));
+        let before = c.q.val().to_u64();
+        c.clock.next = Clock { clk: true };
+        assert!(simulate(c, 100));
+        (before, c.q.val().to_u64())
+    }
+
+    #[test]
+    fn a_register_delays_by_one_clock_and_a_wire_not_at_all() {
+        let mut reg = Cut::<Bits<8>>::new(true);
+        reg.connect_all();
+        assert_eq!(edge(&mut reg, 5), (0, 5));
+        assert_eq!(edge(&mut reg, 9), (5, 9));
+        let mut wire = Cut::<Bits<8>>::new(false);
+        wire.connect_all();
+        assert_eq!(edge(&mut wire, 5), (5, 5));
+        assert_eq!(edge(&mut wire, 9), (9, 9));
+    }
+}
