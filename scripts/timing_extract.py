@@ -12,7 +12,9 @@ wrapper's cells (one flip-flop per core input and output bit, about one LUT4 per
 counted separately and checked against the bits the wrapper was written with.
 The critical path is the clock-to-clock one; its start and end cells are named by the register they
 hold: the core's register as rust-hdl names it, its path in the core (`exit_q2$0`, the instance of
-the child module `<module>$exit_q2$0`; no `core.` prefix, no bit index), found from the flip-flop's
+the child module `<module>$exit_q2$0`; `exit_q2$0$r`, the register `r` of a cut point
+(`rtl::cut::Cut`); `mul_entry$2.p_q`, a register `p_q` inside a child; no `core.` prefix, no bit
+index), found from the flip-flop's
 source line in core.v; `wrap_in:<port>` / `wrap_out:<port>` for the wrapper's shift-register
 flip-flop at a core input or output; `<cell type>:<name>` for a cell other than a flip-flop.
 
