@@ -121,8 +121,10 @@ fn split_b12_matches_model_shrinking() {
     assert!(s.odd_splits > 0 && s.full_splits > 0, "{s:?}");
 }
 
-/// The results processor's wrong models (`super::split`) are caught, shrunk to a one-job program, and
-/// leave a waveform with the block's `done`.
+/// The results processor's wrong models (`super::split`) are caught, shrunk to a program of one job (or
+/// two, when the failing job reuses the ray set an earlier job loaded: proptest removes jobs before it
+/// simplifies the rest, and never turns a reuse into a load), and leave a waveform with the block's
+/// `done`.
 #[test]
 fn a_wrong_split_model_is_caught_shrunk_and_leaves_a_vcd() {
     for (name, wrong) in [
@@ -146,15 +148,15 @@ fn a_wrong_split_model_is_caught_shrunk_and_leaves_a_vcd() {
             .split("job program [")
             .nth(1)
             .expect("the shrunk program");
-        assert_eq!(
-            program
-                .split("\n")
-                .next()
-                .unwrap()
-                .matches("SplitStep")
-                .count(),
-            1,
-            "{name}: not shrunk to one job: {msg}"
+        let jobs = program
+            .split('\n')
+            .next()
+            .unwrap()
+            .matches("SplitStep")
+            .count();
+        assert!(
+            (1..=2).contains(&jobs),
+            "{name}: not shrunk to one or two jobs: {msg}"
         );
     }
 }

@@ -1,15 +1,17 @@
 //! The hand-written Verilog of `rtl::slab::mul_round::MulRound` (multiply, directed rounding and
 //! saturation decided on the product) against its model, `MulRound::eval`, on every input of small
 //! units, in Icarus: floor and ceil, shifts from 0 to beyond the t code's range, combinational and with
-//! the product registered, at widths where the saturation is reached from both sides and where it
+//! the product registered (the operands change after each clock edge, so `y` shows which: the last
+//! edge's product, or this clock's), at widths where the saturation is reached from both sides and where it
 //! cannot be reached (its comparisons become constants).
 
 use rtl::export::verilog_named;
 use rtl::slab::mul_round::MulRound;
 use std::process::Command;
 
-/// Runs every `(a, m)` through the Verilog of `unit` (named `name`) in Icarus and returns `y` per input,
-/// in the order a = 0.., m = 0.. (codes).
+/// Runs every `(a, m)` through the Verilog of `unit` (named `name`) in Icarus, a clock edge after
+/// each, then the operands' complements, and returns `y` per input in the order a = 0.., m = 0..
+/// (codes): of `(a, m)` for a unit with its product registered, of the complements for one without.
 fn icarus_table<const D: usize, const I: usize, const T: usize>(
     mut unit: MulRound<D, I, T>,
     name: &str,
@@ -29,7 +31,11 @@ initial begin
    for (i = 0; i < {na}; i = i + 1)
       for (j = 0; j < {nm}; j = j + 1) begin
          a = i; m = j;
-         #1 clock = 1; #1 clock = 0; #1 $display(\"%0d\", y);
+         #1 clock = 1; #1 clock = 0;
+         // New operands after the edge: a registered product still shows (i, j), a combinational
+         // unit the new operands.
+         a = ~i; m = ~j;
+         #1 $display(\"%0d\", y);
       end
    $finish;
 end
@@ -72,7 +78,10 @@ fn every_input<const D: usize, const I: usize, const T: usize>(tag: &str, shifts
                     "{name}: Icarus printed too few lines"
                 );
                 for (k, &y) in got.iter().enumerate() {
-                    let (a, m) = ((k >> I) as u64, (k & ((1 << I) - 1)) as u64);
+                    let (mut a, mut m) = ((k >> I) as u64, (k & ((1 << I) - 1)) as u64);
+                    if !pipelined {
+                        (a, m) = (!a & ((1 << D) - 1), !m & ((1 << I) - 1));
+                    }
                     let want = MulRound::<D, I, T>::eval(ceil, shift, a, m);
                     assert_eq!(y, want, "{name}: a = {a:#x}, m = {m:#x}");
                 }
