@@ -63,9 +63,9 @@ pub fn lint(path: &Path) -> Result<(), String> {
     }
 }
 
-/// Icarus compiles the file: `Err` with its output otherwise.
-pub fn icarus(path: &Path) -> Result<(), String> {
-    // One object file per call: two tests may compile the same module at once.
+/// Compiles `path` with Icarus into an object file of its own (two tests may compile the same module
+/// at once) and returns its path: `Err` with Icarus's output otherwise.
+fn icarus_compile(path: &Path) -> Result<PathBuf, String> {
     static CALLS: std::sync::atomic::AtomicU64 = std::sync::atomic::AtomicU64::new(0);
     let n = CALLS.fetch_add(1, std::sync::atomic::Ordering::Relaxed);
     let obj = path.with_extension(format!("{}.{n}.vvp", std::process::id()));
@@ -73,10 +73,38 @@ pub fn icarus(path: &Path) -> Result<(), String> {
         "iverilog",
         &["-o".as_ref(), obj.as_os_str(), path.as_os_str()],
     );
-    let _ = std::fs::remove_file(&obj);
     if ok {
-        Ok(())
+        Ok(obj)
     } else {
+        let _ = std::fs::remove_file(&obj);
         Err(format!("iverilog rejects {}:\n{text}", path.display()))
+    }
+}
+
+/// Icarus compiles the file: `Err` with its output otherwise.
+pub fn icarus(path: &Path) -> Result<(), String> {
+    let obj = icarus_compile(path)?;
+    let _ = std::fs::remove_file(&obj);
+    Ok(())
+}
+
+/// Compiles `path` (a design with its own test bench) with Icarus and runs it with `vvp`: its standard
+/// output, or `Err` with the tools' output.
+pub fn icarus_run(path: &Path) -> Result<String, String> {
+    let obj = icarus_compile(path)?;
+    let out = Command::new("vvp")
+        .arg(&obj)
+        .output()
+        .map_err(|e| format!("cannot run vvp ({e}); scripts/test installs it"));
+    let _ = std::fs::remove_file(&obj);
+    let out = out?;
+    if out.status.success() {
+        Ok(String::from_utf8_lossy(&out.stdout).into_owned())
+    } else {
+        Err(format!(
+            "vvp {} failed:\n{}",
+            path.display(),
+            String::from_utf8_lossy(&out.stderr)
+        ))
     }
 }

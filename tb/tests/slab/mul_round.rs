@@ -7,7 +7,6 @@
 
 use rtl::export::verilog_named;
 use rtl::slab::mul_round::MulRound;
-use std::process::Command;
 
 /// Runs every `(a, m)` through the Verilog of `unit` (named `name`) in Icarus, a clock edge after
 /// each, then the operands' complements, and returns `y` per input in the order a = 0.., m = 0..
@@ -47,19 +46,10 @@ endmodule
         na = 1 << D,
         nm = 1 << I,
     );
-    let (src, obj) = (
-        dir.join(format!("{name}.v")),
-        dir.join(format!("{name}.vvp")),
-    );
+    let src = dir.join(format!("{name}.v"));
     std::fs::write(&src, format!("{v}\n{bench}")).unwrap();
-    let c = Command::new("iverilog")
-        .args(["-o".as_ref(), obj.as_os_str(), src.as_os_str()])
-        .output()
-        .expect("iverilog (scripts/test installs it)");
-    assert!(c.status.success(), "{}", String::from_utf8_lossy(&c.stderr));
-    let r = Command::new("vvp").arg(&obj).output().expect("vvp");
-    assert!(r.status.success(), "{}", String::from_utf8_lossy(&r.stderr));
-    String::from_utf8_lossy(&r.stdout)
+    tb::verilog_tools::icarus_run(&src)
+        .unwrap_or_else(|e| panic!("{e}"))
         .lines()
         .filter_map(|l| l.trim().parse().ok())
         .collect()
