@@ -40,6 +40,15 @@ impl<T: Synth> Cut<T> {
     pub fn array<const N: usize>(on: bool) -> [Self; N] {
         std::array::from_fn(|_| Self::new(on))
     }
+
+    /// `N` cuts for a chain: the first `regs` registers, the rest wires (a delay of `regs` clocks).
+    pub fn chain<const N: usize>(regs: usize) -> [Self; N] {
+        assert!(
+            regs <= N,
+            "a chain of {N} cuts holds at most {N} registers, not {regs}"
+        );
+        std::array::from_fn(|i| Self::new(i < regs))
+    }
 }
 
 impl<T: Synth> Logic for Cut<T> {

@@ -148,10 +148,29 @@ pub fn export_all(dir: &Path) -> std::io::Result<Vec<PathBuf>> {
     Ok(out)
 }
 
-/// Module name of the table option of the fixed cull-plane tester, e.g.
+/// Module name of the table option of the fixed cull-plane tester at its default depth, e.g.
 /// `plane_fix_g12_i16f11_t20f6_n8_fd11_r8_k4` (the testbenches' name).
 pub fn plane_fix_module(cf: &CullFixFormat, k: usize) -> String {
     format!("plane_fix_{}_k{k}", cf.name())
+}
+
+/// Module name of the table option with slab cuts `scuts` and plane cuts `pcuts`: the default name
+/// with the depth's suffix from [`crate::plane::fix::PLANE_FIX_DEPTHS`] (`_p9`), or `_c<slab>_<plane>`
+/// in hex for a depth not in that list.
+pub fn plane_fix_module_cuts(cf: &CullFixFormat, k: usize, scuts: usize, pcuts: usize) -> String {
+    let suffix = match crate::plane::fix::PLANE_FIX_DEPTHS
+        .iter()
+        .find(|(s, p, _)| (*s, *p) == (scuts, pcuts))
+    {
+        Some((_, _, s)) => s.to_string(),
+        None => format!("_c{scuts:02x}_{pcuts:02x}"),
+    };
+    format!("{}{suffix}", plane_fix_module(cf, k))
+}
+
+/// Module name of the fixed cull-plane tester `S` for `cf`, from its planes and cut points.
+pub fn plane_fix_module_of<S: crate::plane::fix::PlaneFixIo>(cf: &CullFixFormat) -> String {
+    plane_fix_module_cuts(cf, S::PLANES, S::SLAB_CUTS, S::CUTS)
 }
 
 /// Module name of the fraction option, e.g. `plane_fix_frac_g12_i16f11_t20f6_n8_fd11_k4` (no table bits).
@@ -165,35 +184,32 @@ pub fn plane_frac_module(cf: &CullFixFormat, k: usize) -> String {
 }
 
 /// `(module, Verilog, latency)` of the cull-plane testers in the synthesis report: the table option over
-/// b8, b12 and b16 and the fraction option over b12 and b16, each with 1 and 4 planes; the float tester
-/// with 1 plane.
+/// b8, b12 and b16 at the default depth and the 9-clock depth and the fraction option over b12 and b16,
+/// each with 1 and 4 planes; the float tester with 1 plane.
 pub fn plane_verilog() -> Vec<(String, String, usize)> {
     fn named<S: crate::SlabIo>(module: String, mut uut: S) -> (String, String, usize) {
         let v = verilog_named(&mut uut, &module);
         (module, v, S::LATENCY)
     }
+    fn fix<S: crate::plane::fix::PlaneFixIo>(cf: &CullFixFormat) -> (String, String, usize) {
+        named(plane_fix_module_of::<S>(cf), S::for_format(cf))
+    }
     let b8 = CullFixFormat::over(FixFormat::b8());
     let b12 = CullFixFormat::over(FixFormat::b12());
     let b16 = CullFixFormat::over(FixFormat::b16());
     let mut v = vec![
-        named(plane_fix_module(&b8, 1), crate::PlaneFixB8::<1>::new(&b8)),
-        named(plane_fix_module(&b8, 4), crate::PlaneFixB8::<4>::new(&b8)),
-        named(
-            plane_fix_module(&b12, 1),
-            crate::PlaneFixB12::<1>::new(&b12),
-        ),
-        named(
-            plane_fix_module(&b12, 4),
-            crate::PlaneFixB12::<4>::new(&b12),
-        ),
-        named(
-            plane_fix_module(&b16, 1),
-            crate::PlaneFixB16::<1>::new(&b16),
-        ),
-        named(
-            plane_fix_module(&b16, 4),
-            crate::PlaneFixB16::<4>::new(&b16),
-        ),
+        fix::<crate::PlaneFixB8<1>>(&b8),
+        fix::<crate::PlaneFixB8<4>>(&b8),
+        fix::<crate::PlaneFixB12<1>>(&b12),
+        fix::<crate::PlaneFixB12<4>>(&b12),
+        fix::<crate::PlaneFixB16<1>>(&b16),
+        fix::<crate::PlaneFixB16<4>>(&b16),
+        fix::<crate::PlaneFixB8P9<1>>(&b8),
+        fix::<crate::PlaneFixB8P9<4>>(&b8),
+        fix::<crate::PlaneFixB12P9<1>>(&b12),
+        fix::<crate::PlaneFixB12P9<4>>(&b12),
+        fix::<crate::PlaneFixB16P9<1>>(&b16),
+        fix::<crate::PlaneFixB16P9<4>>(&b16),
         named(
             plane_frac_module(&b12, 1),
             crate::PlaneFracB12::<1>::new(&b12),

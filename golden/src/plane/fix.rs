@@ -315,7 +315,15 @@ pub fn recip_entry(r: u32, i: u64) -> (u64, u64) {
 /// The reciprocal bound of a magnitude `mag`: `(r, L)` with `mag = m 2^L`, `m` in `[1, 2)`, and `r` the
 /// table's upper (`upper = true`) or lower bound of `2^(R+1) / m`.
 pub fn recip(r: u32, mag: u64, upper: bool) -> (u64, u32) {
-    // A zero magnitude (only from inputs no quantisation produces) reads entry 0 with L = 0, as the RTL.
+    let (l, idx) = lead_and_index(r, mag);
+    let (lo, hi) = recip_entry(r, idx);
+    (if upper { hi } else { lo }, l)
+}
+
+/// `(L, index)` of a magnitude: its leading-one position and the `r` bits below the leading one. A zero
+/// magnitude (only from inputs no quantisation produces) reads entry 0 with `L = 0`, as the RTL.
+#[inline]
+pub fn lead_and_index(r: u32, mag: u64) -> (u32, u64) {
     let l = 63u32.saturating_sub(mag.leading_zeros());
     let mask = (1u64 << r) - 1;
     let idx = if l >= r {
@@ -323,8 +331,7 @@ pub fn recip(r: u32, mag: u64, upper: bool) -> (u64, u32) {
     } else {
         (mag << (r - l)) & mask
     };
-    let (lo, hi) = recip_entry(r, idx);
-    (if upper { hi } else { lo }, l)
+    (l, idx)
 }
 
 /// What one plane does to the interval.
@@ -365,7 +372,13 @@ pub fn plane_sums(r: &FixRay, d: &FixDir, b: &FixBox, p: &FixPlane) -> (i64, i64
 /// `[smallest finite, +inf]`).
 #[inline(always)]
 pub fn scale_bound(c_shift: i32, t_bits: u32, a: i64, r: u64, l: u32, exit: bool) -> i64 {
-    let q = a as i128 * r as i128;
+    scale_product(c_shift, t_bits, a as i128 * r as i128, l, exit)
+}
+
+/// The last step of [`scale_bound`], on the product `q = A * r` (the RTL's `BoundScale`, after the
+/// product's cut point).
+#[inline(always)]
+pub fn scale_product(c_shift: i32, t_bits: u32, q: i128, l: u32, exit: bool) -> i64 {
     let sh = c_shift - l as i32;
     let v = if sh >= 0 {
         q << sh
@@ -383,10 +396,63 @@ pub fn scale_bound(c_shift: i32, t_bits: u32, a: i64, r: u64, l: u32, exit: bool
     }) as i64
 }
 
+/// The first step of a plane's bound from its sums (the RTL's `BoundPick`): the plane's class, the
+/// signed numerator `A`, the table half and the reciprocal's operands `L` and index. Every field is
+/// defined for every input, as the hardware computes it: for a plane that is neither an entry nor an
+/// exit plane `a`, `upper`, `lead` and `idx` are what the datapath carries (and the bound ignores).
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct BoundPick {
+    /// `den_lo > 0`: the plane bounds the exit.
+    pub exit: bool,
+    /// Not an exit plane and `den_hi < 0`: the plane bounds the entry.
+    pub entry: bool,
+    /// Parallel (`den_lo = den_hi = 0`) with the origin box on the empty side (`S_lo > 0`): cull.
+    pub cull: bool,
+    /// `A`: `-S_lo` for an exit plane, else `S_lo`.
+    pub a: i64,
+    /// The upper half of the reciprocal table (the larger bound: exit with `A >= 0`, entry with `A < 0`).
+    pub upper: bool,
+    /// `L`: the magnitude's leading-one position (0 for a zero magnitude).
+    pub lead: u32,
+    /// The table index: the `R` magnitude bits below the leading one.
+    pub idx: u64,
+}
+
+/// [`BoundPick`] of sums `(s, dl, dh)` for `r_bits` table bits and `den_bits`-bit `den` values. The
+/// magnitude is `den_bits` bits unsigned: only an inverted `den` interval (which quantisation never
+/// produces) can make the chosen one negative, and the RTL wraps it the same way.
+#[inline]
+pub fn bound_pick(r_bits: u32, den_bits: u32, s: i64, dl: i64, dh: i64) -> BoundPick {
+    let exit = dl > 0;
+    let entry = !exit && dh < 0;
+    let cull = !exit && !entry && dl == 0 && dh == 0 && s > 0;
+    let a = if exit { -s } else { s };
+    let mag = if exit {
+        if s > 0 {
+            dh
+        } else {
+            dl
+        }
+    } else if s < 0 {
+        -dh
+    } else {
+        -dl
+    };
+    let (lead, idx) = lead_and_index(r_bits, mag as u64 & ((1u64 << den_bits) - 1));
+    BoundPick {
+        exit,
+        entry,
+        cull,
+        a,
+        upper: (a >= 0) == exit,
+        lead,
+        idx,
+    }
+}
+
 /// What a plane with sums `(S_lo, den_lo, den_hi)` does (module doc), for table bits `r_bits`, scale
-/// exponent `c_shift`, `t_bits`-bit t codes and `den_bits`-bit `den` values. This is the RTL's `PlaneBound`
-/// unit. The magnitude is taken as a `den_bits`-bit unsigned number: only an inverted `den` interval (which
-/// quantisation never produces) can make the chosen one negative, and the RTL wraps it the same way.
+/// exponent `c_shift`, `t_bits`-bit t codes and `den_bits`-bit `den` values: [`bound_pick`], the table
+/// read ([`recip_entry`]), the product `A r` and [`scale_product`], the steps of the RTL's `PlaneBound`.
 #[inline]
 pub fn bound_from_sums(
     r_bits: u32,
@@ -397,20 +463,17 @@ pub fn bound_from_sums(
     dl: i64,
     dh: i64,
 ) -> PlaneEffect {
-    let (exit, a, mag) = if dl > 0 {
-        (true, -s, if s <= 0 { dl } else { dh })
-    } else if dh < 0 {
-        (false, s, if s >= 0 { -dl } else { -dh })
-    } else if dl == 0 && dh == 0 && s > 0 {
+    let p = bound_pick(r_bits, den_bits, s, dl, dh);
+    if p.cull {
         return PlaneEffect::Cull;
-    } else {
+    }
+    if !p.exit && !p.entry {
         return PlaneEffect::None;
-    };
-    // The larger bound takes the upper reciprocal: exit with A >= 0, entry with A < 0.
-    let upper = (a >= 0) == exit;
-    let (rv, l) = recip(r_bits, mag as u64 & ((1u64 << den_bits) - 1), upper);
-    let t = scale_bound(c_shift, t_bits, a, rv, l, exit);
-    if exit {
+    }
+    let (lo, hi) = recip_entry(r_bits, p.idx);
+    let rv = if p.upper { hi } else { lo };
+    let t = scale_bound(c_shift, t_bits, p.a, rv, p.lead, p.exit);
+    if p.exit {
         PlaneEffect::Exit(t)
     } else {
         PlaneEffect::Entry(t)

@@ -1,24 +1,38 @@
 //! `PlaneBound`: what one cull plane does to the ray's interval, from its sums — the entry or exit bound
 //! `t*` through the directed reciprocal table, or a parallel cull (`golden::plane::fix::bound_from_sums`,
-//! which documents the arithmetic and why every bound is conservative). Combinational.
+//! which documents the arithmetic and why every bound is conservative).
 //!
-//! Inside: classification by the signs of `den_lo`, `den_hi`; the magnitude and the table half (upper or
-//! lower bound of `1/m`) chosen by the sign of `A`; a leading-one search; the `2^R`-entry table; the
-//! product `A * r`, shifted by `C - L` with floor (entry) or ceil (exit); saturation to a t code. The wide
-//! signed product and the variable shift are beyond rust-hdl 0.46 (16x16 multiplies, values over 32 bits
-//! stored bit by bit), so, like [`crate::slab::mul_round::MulRound`], the block has a native model and
-//! hand-written Verilog, checked against each other by cross-simulation.
+//! Four steps, each a leaf with its model in `golden::plane::fix`, with a cut point ([`crate::cut::Cut`])
+//! after each of the first three, a register or a wire as the tester's configuration chooses
+//! ([`super::fix::cut`]):
+//! 1. [`BoundPick`]: classification by the signs of `den_lo`, `den_hi`; `A`, the magnitude and the table
+//!    half chosen by the sign of `A`; the leading-one search and the table index. Cut
+//!    [`super::fix::cut::PICK`] (`_qk`).
+//! 2. [`BoundTable`]: the `2^R`-entry table read. Cut [`super::fix::cut::TABLE`] (`_qt`).
+//! 3. [`BoundMul`]: the product `A * r`. Cut [`super::fix::cut::PRODUCT`] (`_qm`).
+//! 4. [`BoundScale`]: the shift by `C - L` with floor (entry) or ceil (exit) and the saturation to a t
+//!    code.
 //!
-//! Outputs: `is_entry`, `is_exit`, `par` (parallel and on the empty side: cull) and `y`, the bound as a
-//! `T`-bit t code (0 when the plane is neither an entry nor an exit plane).
+//! Latency: the number of cuts that are registers, 0 to 3 ([`PlaneBound::latency`]).
+//!
+//! # Inputs
+//! `clock`, `s`, `den_lo`, `den_hi`.
+//! # Outputs
+//! `is_entry`, `is_exit`, `par` (parallel and on the empty side: cull) and `y`, the bound as a `T`-bit t
+//! code (0 when the plane is neither an entry nor an exit plane), of the inputs `latency` clocks ago.
 
-use crate::slab::fix::{code, sext};
-use golden::plane::fix::{bound_from_sums, recip_entry, PlaneEffect};
+use super::bound_mul::BoundMul;
+use super::bound_pick::{BoundPick, IDX_BITS};
+use super::bound_scale::BoundScale;
+use super::bound_table::{BoundTable, RV_BITS};
+use super::fix::cut;
+use crate::cut::Cut;
 use rust_hdl::prelude::*;
 
 /// One plane's effect; see the module documentation.
 #[derive(LogicBlock)]
 pub struct PlaneBound<const SB: usize, const EB: usize, const T: usize> {
+    pub clock: Signal<In, Clock>,
     pub s: Signal<In, Bits<SB>>,
     pub den_lo: Signal<In, Bits<EB>>,
     pub den_hi: Signal<In, Bits<EB>>,
@@ -26,18 +40,45 @@ pub struct PlaneBound<const SB: usize, const EB: usize, const T: usize> {
     pub is_entry: Signal<Out, Bit>,
     pub is_exit: Signal<Out, Bit>,
     pub par: Signal<Out, Bit>,
-    /// Table index bits `R`.
-    r_bits: Constant<Bits<8>>,
-    /// `max(C, 0)` and `max(-C, 0)`, `C` the scale exponent.
-    c_left: Constant<Bits<8>>,
-    c_right: Constant<Bits<8>>,
+    // step 1 and its cut
+    pick: BoundPick<SB, EB>,
+    a_qk: Cut<Bits<SB>>,
+    upper_qk: Cut<Bit>,
+    lead_qk: Cut<Bits<8>>,
+    idx_qk: Cut<Bits<IDX_BITS>>,
+    ex_qk: Cut<Bit>,
+    en_qk: Cut<Bit>,
+    par_qk: Cut<Bit>,
+    // step 2 and its cut
+    rom: BoundTable,
+    rv_qt: Cut<Bits<RV_BITS>>,
+    a_qt: Cut<Bits<SB>>,
+    lead_qt: Cut<Bits<8>>,
+    ex_qt: Cut<Bit>,
+    en_qt: Cut<Bit>,
+    par_qt: Cut<Bit>,
+    // step 3 and its cut
+    mul: BoundMul<SB>,
+    prod_qm: Cut<Bits<64>>,
+    lead_qm: Cut<Bits<8>>,
+    ex_qm: Cut<Bit>,
+    en_qm: Cut<Bit>,
+    par_qm: Cut<Bit>,
+    // step 4
+    scale: BoundScale<T>,
 }
 
 impl<const SB: usize, const EB: usize, const T: usize> PlaneBound<SB, EB, T> {
-    /// A unit with a `2^r_bits`-entry table and scale exponent `c_shift`.
-    pub fn new(r_bits: u32, c_shift: i32) -> Self {
-        assert!((1..=12).contains(&r_bits) && T <= 32 && SB < 63 && EB < 63);
+    /// A unit with a `2^r_bits`-entry table, scale exponent `c_shift`, and the registers `cuts` names
+    /// (bits [`cut::PICK`], [`cut::TABLE`], [`cut::PRODUCT`]; others are ignored).
+    pub fn new(r_bits: u32, c_shift: i32, cuts: usize) -> Self {
+        let (k, t, m) = (
+            cuts & cut::PICK != 0,
+            cuts & cut::TABLE != 0,
+            cuts & cut::PRODUCT != 0,
+        );
         Self {
+            clock: Default::default(),
             s: Default::default(),
             den_lo: Default::default(),
             den_hi: Default::default(),
@@ -45,144 +86,98 @@ impl<const SB: usize, const EB: usize, const T: usize> PlaneBound<SB, EB, T> {
             is_entry: Default::default(),
             is_exit: Default::default(),
             par: Default::default(),
-            r_bits: Constant::new(bits::<8>(r_bits as u64)),
-            c_left: Constant::new(bits::<8>(c_shift.max(0) as u64)),
-            c_right: Constant::new(bits::<8>((-c_shift).max(0) as u64)),
+            pick: BoundPick::new(r_bits),
+            a_qk: Cut::new(k),
+            upper_qk: Cut::new(k),
+            lead_qk: Cut::new(k),
+            idx_qk: Cut::new(k),
+            ex_qk: Cut::new(k),
+            en_qk: Cut::new(k),
+            par_qk: Cut::new(k),
+            rom: BoundTable::new(r_bits),
+            rv_qt: Cut::new(t),
+            a_qt: Cut::new(t),
+            lead_qt: Cut::new(t),
+            ex_qt: Cut::new(t),
+            en_qt: Cut::new(t),
+            par_qt: Cut::new(t),
+            mul: BoundMul::new(r_bits),
+            prod_qm: Cut::new(m),
+            lead_qm: Cut::new(m),
+            ex_qm: Cut::new(m),
+            en_qm: Cut::new(m),
+            par_qm: Cut::new(m),
+            scale: BoundScale::new(BoundMul::<SB>::bits_for(r_bits), c_shift),
         }
     }
 
-    fn c_shift(&self) -> i32 {
-        self.c_left.val().to_u64() as i32 - self.c_right.val().to_u64() as i32
+    /// Clocks from the sums in to the bound out for the cut points `cuts`.
+    pub const fn latency(cuts: usize) -> usize {
+        (cuts & cut::BOUND_STEPS).count_ones() as usize
     }
 }
 
 impl<const SB: usize, const EB: usize, const T: usize> Logic for PlaneBound<SB, EB, T> {
+    #[hdl_gen]
     fn update(&mut self) {
-        let e = bound_from_sums(
-            self.r_bits.val().to_u64() as u32,
-            self.c_shift(),
-            T as u32,
-            EB as u32,
-            sext(self.s.val().to_u64(), SB),
-            sext(self.den_lo.val().to_u64(), EB),
-            sext(self.den_hi.val().to_u64(), EB),
-        );
-        let (en, ex, par, y) = match e {
-            PlaneEffect::None => (false, false, false, 0),
-            PlaneEffect::Entry(t) => (true, false, false, t),
-            PlaneEffect::Exit(t) => (false, true, false, t),
-            PlaneEffect::Cull => (false, false, true, 0),
-        };
-        self.is_entry.next = en;
-        self.is_exit.next = ex;
-        self.par.next = par;
-        self.y.next = bits::<T>(code(y, T));
-    }
+        self.a_qk.clock.next = self.clock.val();
+        self.upper_qk.clock.next = self.clock.val();
+        self.lead_qk.clock.next = self.clock.val();
+        self.idx_qk.clock.next = self.clock.val();
+        self.ex_qk.clock.next = self.clock.val();
+        self.en_qk.clock.next = self.clock.val();
+        self.par_qk.clock.next = self.clock.val();
+        self.rv_qt.clock.next = self.clock.val();
+        self.a_qt.clock.next = self.clock.val();
+        self.lead_qt.clock.next = self.clock.val();
+        self.ex_qt.clock.next = self.clock.val();
+        self.en_qt.clock.next = self.clock.val();
+        self.par_qt.clock.next = self.clock.val();
+        self.prod_qm.clock.next = self.clock.val();
+        self.lead_qm.clock.next = self.clock.val();
+        self.ex_qm.clock.next = self.clock.val();
+        self.en_qm.clock.next = self.clock.val();
+        self.par_qm.clock.next = self.clock.val();
 
-    fn connect(&mut self) {
-        self.y.connect();
-        self.is_entry.connect();
-        self.is_exit.connect();
-        self.par.connect();
-    }
+        // Step 1: class, A, table half, leading one and index.
+        self.pick.s.next = self.s.val();
+        self.pick.den_lo.next = self.den_lo.val();
+        self.pick.den_hi.next = self.den_hi.val();
+        self.a_qk.d.next = self.pick.a.val();
+        self.upper_qk.d.next = self.pick.upper.val();
+        self.lead_qk.d.next = self.pick.lead.val();
+        self.idx_qk.d.next = self.pick.idx.val();
+        self.ex_qk.d.next = self.pick.is_exit.val();
+        self.en_qk.d.next = self.pick.is_entry.val();
+        self.par_qk.d.next = self.pick.par.val();
 
-    fn hdl(&self) -> Verilog {
-        let r = self.r_bits.val().to_u64() as usize;
-        let cl = self.c_left.val().to_u64() as usize;
-        let pw = SB + 1 + r + 3; // signed A (SB+1) times signed {0, r} (R+3)
-        let qw = pw + cl;
-        // Bits of an index into the (EB + R)-bit shifted magnitude.
-        let lw = (usize::BITS - (EB + r - 1).leading_zeros()) as usize;
-        let ninf = -(1i64 << (T - 1));
-        let pinf = (1i64 << (T - 1)) - 1;
-        let lit = |v: i64| {
-            if v < 0 {
-                format!("(-{}'sd{})", qw + 1, -v)
-            } else {
-                format!("{}'sd{}", qw + 1, v)
-            }
-        };
-        let mut table = String::new();
-        for i in 0..(1u64 << r) {
-            let (lo, hi) = recip_entry(r as u32, i);
-            table += &format!(
-                "      {r}'d{i}: begin rl = {w}'d{lo}; rh = {w}'d{hi}; end\n",
-                w = r + 2
-            );
-        }
-        let widen = if qw > pw {
-            format!("{{{{{}{{prod[{}]}}}}, prod}}", qw - pw, pw - 1)
-        } else {
-            "prod".to_string()
-        };
-        Verilog::Custom(format!(
-            "\
-// Classification: an exit plane when den_lo > 0, an entry plane when den_hi < 0, a parallel cull when
-// both are zero and s > 0.
-wire s_neg = s[{sb1}];
-wire s_pos = !s[{sb1}] && (s != {SB}'d0);
-wire ex = !den_lo[{eb1}] && (den_lo != {EB}'d0);
-wire en = !ex && den_hi[{eb1}];
-wire signed [{SB}:0] sx = {{s[{sb1}], s}};
-wire signed [{SB}:0] a = ex ? -sx : sx;
-wire [{eb1}:0] mag = ex ? (s_pos ? den_hi : den_lo) : (s_neg ? -den_hi : -den_lo);
-wire upper = (!a[{SB}]) == ex;
-// Leading one of the magnitude, and the R table-index bits below it.
-reg [{lw1}:0] lead;
-integer i;
-always @(*) begin
-   lead = {lw}'d0;
-   for (i = 0; i < {EB}; i = i + 1)
-      if (mag[i]) lead = i[{lw1}:0];
-end
-wire [{mw1}:0] mag_up = {{{{{r}{{1'b0}}}}, mag}} << r_bits;
-wire [{r1}:0] idx = mag_up[lead +: {r}];
-reg [{r21}:0] rl;
-reg [{r21}:0] rh;
-always @(*) begin
-   case (idx)
-{table}      default: begin rl = {r2}'d0; rh = {r2}'d0; end
-   endcase
-end
-wire [{r21}:0] rv = upper ? rh : rl;
-// A * r * 2^(C - lead), floored for an entry, ceiled for an exit, saturated to a t code.
-wire signed [{pw1}:0] prod = a * $signed({{1'b0, rv}});
-wire signed [{qw1}:0] prod_w = {widen};
-wire signed [{qw}:0] q = {{prod_w[{qw1}], prod_w}} <<< c_left;
-wire [7:0] sh = {{{{{pad}{{1'b0}}}}, lead}} + c_right;
-wire signed [{qw}:0] quot = ex ? -((-q) >>> sh) : (q >>> sh);
-wire signed [{qw}:0] lo = ex ? {lo_ex} : {lo_en};
-wire signed [{qw}:0] hi = ex ? {hi_ex} : {hi_en};
-always @(*) begin
-   is_exit = ex;
-   is_entry = en;
-   par = !ex && !en && (den_lo == {EB}'d0) && (den_hi == {EB}'d0) && s_pos;
-   if (!ex && !en)
-      y = {T}'d0;
-   else if (quot < lo)
-      y = lo[{t1}:0];
-   else if (quot > hi)
-      y = hi[{t1}:0];
-   else
-      y = quot[{t1}:0];
-end
-",
-            sb1 = SB - 1,
-            eb1 = EB - 1,
-            mw1 = EB + r - 1,
-            lw = lw,
-            lw1 = lw - 1,
-            pad = 8 - lw,
-            r1 = r - 1,
-            r2 = r + 2,
-            r21 = r + 1,
-            pw1 = pw - 1,
-            qw1 = qw - 1,
-            t1 = T - 1,
-            lo_ex = lit(ninf + 1),
-            lo_en = lit(ninf),
-            hi_ex = lit(pinf),
-            hi_en = lit(pinf - 1),
-        ))
+        // Step 2: the table read.
+        self.rom.idx.next = self.idx_qk.q.val();
+        self.rom.upper.next = self.upper_qk.q.val();
+        self.rv_qt.d.next = self.rom.rv.val();
+        self.a_qt.d.next = self.a_qk.q.val();
+        self.lead_qt.d.next = self.lead_qk.q.val();
+        self.ex_qt.d.next = self.ex_qk.q.val();
+        self.en_qt.d.next = self.en_qk.q.val();
+        self.par_qt.d.next = self.par_qk.q.val();
+
+        // Step 3: the product.
+        self.mul.a.next = self.a_qt.q.val();
+        self.mul.rv.next = self.rv_qt.q.val();
+        self.prod_qm.d.next = self.mul.prod.val();
+        self.lead_qm.d.next = self.lead_qt.q.val();
+        self.ex_qm.d.next = self.ex_qt.q.val();
+        self.en_qm.d.next = self.en_qt.q.val();
+        self.par_qm.d.next = self.par_qt.q.val();
+
+        // Step 4: scale, round, saturate.
+        self.scale.prod.next = self.prod_qm.q.val();
+        self.scale.lead.next = self.lead_qm.q.val();
+        self.scale.is_exit.next = self.ex_qm.q.val();
+        self.scale.is_entry.next = self.en_qm.q.val();
+        self.y.next = self.scale.y.val();
+        self.is_exit.next = self.ex_qm.q.val();
+        self.is_entry.next = self.en_qm.q.val();
+        self.par.next = self.par_qm.q.val();
     }
 }

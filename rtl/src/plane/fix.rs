@@ -1,5 +1,6 @@
 //! `PlaneFix`: the fixed-point slab tester chained with `K` cull planes (Arm US 2025/0259373), fully
-//! pipelined (one node test per clock), [`PLANE_FIX_LATENCY`] clocks. Bit for bit
+//! pipelined (one node test per clock), [`plane_fix_latency`] clocks: 6 by default
+//! ([`PLANE_FIX_LATENCY`]), 9 in the deep configuration ([`PLANE_FIX_DEEP`]). Bit for bit
 //! `golden::plane::fix::node_fix` (read `golden::plane::fix` for the arithmetic and the conservativeness
 //! argument); ports mirror `golden::plane::fix::{NodeFixRay, FixNode}` and `PlaneFixOut`.
 //!
@@ -7,7 +8,8 @@
 //! `G, D, I, T`: the slab format ([`SlabFix`], `D = G + 1`); `N`: normal bits; `DB = FD + 3`: direction
 //! bits; `WB = G + N + 4`: offset bits; `SB = G + N + 5`: `S` bits; `EB = N + FD + 4`: `den` bits; `K`:
 //! planes per node, `1..=8`. Stable Rust cannot compute widths from widths, hence the list, checked
-//! against the format by [`PlaneFix::new`].
+//! against the format by [`PlaneFix::new`]. `SCUTS`: the slab tester's cut points
+//! ([`crate::slab::fix::cut`]); `PCUTS`: the plane bound's ([`cut`]).
 //!
 //! # Ports
 //! The slab tester's (`ray_o_lo`, `ray_o_hi`, `ray_m_lo`, `ray_m_hi`, `ray_neg`, `ray_t_min`, `ray_t_max`,
@@ -16,25 +18,79 @@
 //! `t_exit`.
 //!
 //! # Stages
-//! The slab tester runs in parallel with the plane arithmetic and the two meet at clock 5.
+//! The slab tester runs in parallel with the plane arithmetic and the two meet at stage 5. Where the
+//! slab tester's latency ([`crate::slab::fix::slab_fix_latency`]`(SCUTS)`) is shorter than the plane
+//! path's to stage 4 (`4 +` [`PlaneBound::latency`]`(PCUTS)`), its results wait in up to three
+//! registers (`slab_*_qw`), so both arrive together; a configuration whose slab path is the longer is
+//! refused by [`PlaneFix::new`].
 //! 1. `_q1`: per plane, [`PlaneSums`]: `S_lo`, `den_lo`, `den_hi`, the operands chosen by the sign of
 //!    each normal component.
-//! 2. `_q2`: per plane, [`PlaneBound`]: the entry bound (or `-inf`), the exit bound (or `+inf`), the
+//! 2. `_q2`: per plane, [`PlaneBound`] (its own cut points [`cut::PICK`], [`cut::TABLE`],
+//!    [`cut::PRODUCT`] inside): the entry bound (or `-inf`), the exit bound (or `+inf`), the
 //!    parallel-cull flag.
 //! 3. `_q3`, 4. `_q4`: two levels of the max (entries) and min (exits) trees over eight slots (slots from
 //!    `K` on hold `-inf`/`+inf`, which synthesis removes).
 //! 5. `_q5`: the last level merged with the slab tester's result (out at clock 4).
 //! 6. `_q6`: `hit = slab hit && no parallel cull && t_entry <= t_exit`; these registers drive the outputs.
 
+use crate::cut::Cut;
 use crate::io::SlabIo;
 use crate::plane::bound::PlaneBound;
 use crate::plane::sums::PlaneSums;
-use crate::slab::fix::{code, sext, SlabFix, TAG_BITS};
+use crate::slab::fix::{
+    code, sext, slab_fix_latency, SlabFix, SLAB_FIX_CUTS, SLAB_FIX_CUTS_DEEP, TAG_BITS,
+};
 use golden::plane::fix::{CullFixFormat, FixNode, NodeFixRay, PlaneFixOut, MAX_PLANES};
 use rust_hdl::prelude::*;
 
-/// Clocks from a node test entering `PlaneFix` to its result leaving.
-pub const PLANE_FIX_LATENCY: usize = 6;
+/// The cut points inside each plane's bound ([`PlaneBound`]): one bit each of `PlaneFix`'s `PCUTS`,
+/// a register where set, a wire where clear.
+pub mod cut {
+    /// After the class, `A`, the leading one and the table index (`_qk`).
+    pub const PICK: usize = 1 << 0;
+    /// After the reciprocal table read (`_qt`).
+    pub const TABLE: usize = 1 << 1;
+    /// After the product `A * r` (`_qm`), before the shift, rounding and saturation.
+    pub const PRODUCT: usize = 1 << 2;
+    /// All of them.
+    pub const BOUND_STEPS: usize = PICK | TABLE | PRODUCT;
+}
+
+/// Most registers the slab tester's results may wait in for the plane path.
+pub const MAX_SLAB_WAIT: usize = 3;
+
+/// Registers the slab tester's results wait in for the plane path, for slab cuts `scuts` and plane
+/// cuts `pcuts`: the plane path's clocks to stage 4 less the slab tester's latency.
+pub const fn slab_wait(scuts: usize, pcuts: usize) -> usize {
+    let plane = 4 + PlaneBound::<1, 1, 1>::latency(pcuts);
+    let slab = slab_fix_latency(scuts);
+    assert!(
+        plane >= slab && plane - slab <= MAX_SLAB_WAIT,
+        "PlaneFix: the slab tester must not be longer than the plane path, nor shorter by more than 3"
+    );
+    plane - slab
+}
+
+/// Clocks from a node test entering `PlaneFix` to its result leaving, for slab cuts `scuts` and plane
+/// cuts `pcuts`: `6 +` the registers inside the bound.
+pub const fn plane_fix_latency(scuts: usize, pcuts: usize) -> usize {
+    slab_fix_latency(scuts) + slab_wait(scuts, pcuts) + 2
+}
+
+/// The plane cut points of the default tester: none (the bound in one clock).
+pub const PLANE_FIX_CUTS: usize = 0;
+
+/// The deep configuration: `(SCUTS, PCUTS)` = the 6-clock slab tester and every bound cut.
+pub const PLANE_FIX_DEEP: (usize, usize) = (SLAB_FIX_CUTS_DEEP, cut::BOUND_STEPS);
+
+/// Clocks from a node test entering the default `PlaneFix` to its result leaving.
+pub const PLANE_FIX_LATENCY: usize = plane_fix_latency(SLAB_FIX_CUTS, PLANE_FIX_CUTS);
+
+/// The pipeline depths that are exported: `(SCUTS, PCUTS, module-name suffix)`; the default has none.
+pub const PLANE_FIX_DEPTHS: [(usize, usize, &str); 2] = [
+    (SLAB_FIX_CUTS, PLANE_FIX_CUTS, ""),
+    (PLANE_FIX_DEEP.0, PLANE_FIX_DEEP.1, "_p9"),
+];
 
 /// The chained fixed-point slab + cull-plane tester; see the module documentation.
 #[derive(LogicBlock)]
@@ -49,6 +105,8 @@ pub struct PlaneFix<
     const SB: usize,
     const EB: usize,
     const K: usize,
+    const SCUTS: usize = SLAB_FIX_CUTS,
+    const PCUTS: usize = PLANE_FIX_CUTS,
 > {
     pub clock: Signal<In, Clock>,
     pub valid_in: Signal<In, Bit>,
@@ -79,7 +137,13 @@ pub struct PlaneFix<
     t_pinf: Constant<Bits<T>>,
     t_ninf: Constant<Bits<T>>,
     // the slab tester, in parallel
-    slab: SlabFix<G, D, I, T>,
+    slab: SlabFix<G, D, I, T, SCUTS>,
+    // the slab tester's results waiting for the plane path
+    slab_valid_qw: [Cut<Bit>; MAX_SLAB_WAIT],
+    slab_tag_qw: [Cut<Bits<TAG_BITS>>; MAX_SLAB_WAIT],
+    slab_hit_qw: [Cut<Bit>; MAX_SLAB_WAIT],
+    slab_entry_qw: [Cut<Bits<T>>; MAX_SLAB_WAIT],
+    slab_exit_qw: [Cut<Bits<T>>; MAX_SLAB_WAIT],
     // stage 1
     sums: [PlaneSums<G, N, DB, WB, SB, EB>; K],
     s_q1: [DFF<Bits<SB>>; K],
@@ -124,7 +188,9 @@ impl<
         const SB: usize,
         const EB: usize,
         const K: usize,
-    > PlaneFix<G, D, I, T, N, DB, WB, SB, EB, K>
+        const SCUTS: usize,
+        const PCUTS: usize,
+    > PlaneFix<G, D, I, T, N, DB, WB, SB, EB, K, SCUTS, PCUTS>
 {
     /// A tester for `cf`, whose widths must equal the parameters.
     pub fn new(cf: &CullFixFormat) -> Self {
@@ -138,6 +204,7 @@ impl<
             "PlaneFix<..,{N},{DB},{WB},{SB},{EB},{K}> does not match plane format {}",
             cf.name()
         );
+        let wait = slab_wait(SCUTS, PCUTS);
         let t = T as u32;
         Self {
             clock: Default::default(),
@@ -168,11 +235,16 @@ impl<
             t_pinf: Constant::new(bits::<T>((1 << (t - 1)) - 1)),
             t_ninf: Constant::new(bits::<T>(1 << (t - 1))),
             slab: SlabFix::new(&cf.base),
+            slab_valid_qw: Cut::chain(wait),
+            slab_tag_qw: Cut::chain(wait),
+            slab_hit_qw: Cut::chain(wait),
+            slab_entry_qw: Cut::chain(wait),
+            slab_exit_qw: Cut::chain(wait),
             sums: std::array::from_fn(|_| Default::default()),
             s_q1: std::array::from_fn(|_| Default::default()),
             dl_q1: std::array::from_fn(|_| Default::default()),
             dh_q1: std::array::from_fn(|_| Default::default()),
-            bound: std::array::from_fn(|_| PlaneBound::new(cf.r, cf.c_shift())),
+            bound: std::array::from_fn(|_| PlaneBound::new(cf.r, cf.c_shift(), PCUTS)),
             en_q2: Default::default(),
             ex_q2: Default::default(),
             par_q2: Default::default(),
@@ -202,6 +274,10 @@ impl<
 pub trait PlaneFixIo: SlabIo<Ray = NodeFixRay, Box = FixNode, Out = PlaneFixOut> {
     /// Planes per node.
     const PLANES: usize;
+    /// The slab tester's cut points (`SCUTS`).
+    const SLAB_CUTS: usize;
+    /// The plane bound's cut points (`PCUTS`).
+    const CUTS: usize;
     /// A tester for `cf` (whose widths must match the block's).
     fn for_format(cf: &CullFixFormat) -> Self;
 }
@@ -217,9 +293,13 @@ impl<
         const SB: usize,
         const EB: usize,
         const K: usize,
-    > PlaneFixIo for PlaneFix<G, D, I, T, N, DB, WB, SB, EB, K>
+        const SCUTS: usize,
+        const PCUTS: usize,
+    > PlaneFixIo for PlaneFix<G, D, I, T, N, DB, WB, SB, EB, K, SCUTS, PCUTS>
 {
     const PLANES: usize = K;
+    const SLAB_CUTS: usize = SCUTS;
+    const CUTS: usize = PCUTS;
     fn for_format(cf: &CullFixFormat) -> Self {
         Self::new(cf)
     }
@@ -236,12 +316,14 @@ impl<
         const SB: usize,
         const EB: usize,
         const K: usize,
-    > SlabIo for PlaneFix<G, D, I, T, N, DB, WB, SB, EB, K>
+        const SCUTS: usize,
+        const PCUTS: usize,
+    > SlabIo for PlaneFix<G, D, I, T, N, DB, WB, SB, EB, K, SCUTS, PCUTS>
 {
     type Ray = NodeFixRay;
     type Box = FixNode;
     type Out = PlaneFixOut;
-    const LATENCY: usize = PLANE_FIX_LATENCY;
+    const LATENCY: usize = plane_fix_latency(SCUTS, PCUTS);
 
     fn set_clock(&mut self, high: bool) {
         self.clock.next = Clock { clk: high };
@@ -315,7 +397,9 @@ impl<
         const SB: usize,
         const EB: usize,
         const K: usize,
-    > Logic for PlaneFix<G, D, I, T, N, DB, WB, SB, EB, K>
+        const SCUTS: usize,
+        const PCUTS: usize,
+    > Logic for PlaneFix<G, D, I, T, N, DB, WB, SB, EB, K, SCUTS, PCUTS>
 {
     #[hdl_gen]
     fn update(&mut self) {
@@ -357,6 +441,28 @@ impl<
         }
         self.slab.ray_t_min.next = self.ray_t_min.val();
         self.slab.ray_t_max.next = self.ray_t_max.val();
+        for w in 0..MAX_SLAB_WAIT {
+            self.slab_valid_qw[w].clock.next = self.clock.val();
+            self.slab_tag_qw[w].clock.next = self.clock.val();
+            self.slab_hit_qw[w].clock.next = self.clock.val();
+            self.slab_entry_qw[w].clock.next = self.clock.val();
+            self.slab_exit_qw[w].clock.next = self.clock.val();
+        }
+        self.slab_valid_qw[0].d.next = self.slab.valid_out.val();
+        self.slab_tag_qw[0].d.next = self.slab.tag_out.val();
+        self.slab_hit_qw[0].d.next = self.slab.hit.val();
+        self.slab_entry_qw[0].d.next = self.slab.t_entry.val();
+        self.slab_exit_qw[0].d.next = self.slab.t_exit.val();
+        self.slab_valid_qw[1].d.next = self.slab_valid_qw[0].q.val();
+        self.slab_tag_qw[1].d.next = self.slab_tag_qw[0].q.val();
+        self.slab_hit_qw[1].d.next = self.slab_hit_qw[0].q.val();
+        self.slab_entry_qw[1].d.next = self.slab_entry_qw[0].q.val();
+        self.slab_exit_qw[1].d.next = self.slab_exit_qw[0].q.val();
+        self.slab_valid_qw[2].d.next = self.slab_valid_qw[1].q.val();
+        self.slab_tag_qw[2].d.next = self.slab_tag_qw[1].q.val();
+        self.slab_hit_qw[2].d.next = self.slab_hit_qw[1].q.val();
+        self.slab_entry_qw[2].d.next = self.slab_entry_qw[1].q.val();
+        self.slab_exit_qw[2].d.next = self.slab_exit_qw[1].q.val();
 
         // Stage 1: each plane's sums, operands chosen by the sign of its normal components.
         for k in 0..K {
@@ -409,6 +515,7 @@ impl<
             self.par_q2[k].d.next = false;
         }
         for k in 0..K {
+            self.bound[k].clock.next = self.clock.val();
             self.bound[k].s.next = self.s_q1[k].q.val();
             self.bound[k].den_lo.next = self.dl_q1[k].q.val();
             self.bound[k].den_hi.next = self.dh_q1[k].q.val();
@@ -517,19 +624,23 @@ impl<
         {
             self.ex_l5.next = self.ex_q4[1].q.val();
         }
-        if (self.en_l5.val() ^ self.sign_t.val()) > (self.slab.t_entry.val() ^ self.sign_t.val()) {
+        if (self.en_l5.val() ^ self.sign_t.val())
+            > (self.slab_entry_qw[2].q.val() ^ self.sign_t.val())
+        {
             self.entry_q5.d.next = self.en_l5.val();
         } else {
-            self.entry_q5.d.next = self.slab.t_entry.val();
+            self.entry_q5.d.next = self.slab_entry_qw[2].q.val();
         }
-        if (self.ex_l5.val() ^ self.sign_t.val()) < (self.slab.t_exit.val() ^ self.sign_t.val()) {
+        if (self.ex_l5.val() ^ self.sign_t.val())
+            < (self.slab_exit_qw[2].q.val() ^ self.sign_t.val())
+        {
             self.exit_q5.d.next = self.ex_l5.val();
         } else {
-            self.exit_q5.d.next = self.slab.t_exit.val();
+            self.exit_q5.d.next = self.slab_exit_qw[2].q.val();
         }
-        self.live_q5.d.next = self.slab.hit.val() & !self.par_q4.q.val();
-        self.valid_q5.d.next = self.slab.valid_out.val();
-        self.tag_q5.d.next = self.slab.tag_out.val();
+        self.live_q5.d.next = self.slab_hit_qw[2].q.val() & !self.par_q4.q.val();
+        self.valid_q5.d.next = self.slab_valid_qw[2].q.val();
+        self.tag_q5.d.next = self.slab_tag_qw[2].q.val();
 
         // Stage 6: the cull decision.
         self.entry_q6.d.next = self.entry_q5.q.val();

@@ -5,6 +5,10 @@
 //! | [`fix::PlaneFix`] | `plane/fix.rs` | `golden::plane::fix::node_fix` |
 //! | [`sums::PlaneSums`] | `plane/sums.rs` | `golden::plane::fix::plane_sums` |
 //! | [`bound::PlaneBound`] | `plane/bound.rs` | `golden::plane::fix::bound_from_sums` |
+//! | [`bound_pick::BoundPick`] | `plane/bound_pick.rs` | `golden::plane::fix::bound_pick` |
+//! | [`bound_table::BoundTable`] | `plane/bound_table.rs` | `golden::plane::fix::recip_entry` |
+//! | [`bound_mul::BoundMul`] | `plane/bound_mul.rs` | the product `A * r` of `golden::plane::fix::scale_bound` |
+//! | [`bound_scale::BoundScale`] | `plane/bound_scale.rs` | `golden::plane::fix::scale_product` |
 //! | [`float::PlaneFloat`] | `plane/float.rs` | `golden::plane::float::cull_float` |
 //! | [`recip::FpRecip`] | `plane/recip.rs` | `golden::plane::float::recip_float` |
 //! | [`quot::PlaneFrac`] | `plane/quot.rs` | [`quot::node_frac`] (the quotient option: bounds kept as exact quotients) |
@@ -14,6 +18,10 @@
 //! Which configurations exist: [`registry`]; the float tester's export and dispatch: [`float_export`].
 
 pub mod bound;
+pub mod bound_mul;
+pub mod bound_pick;
+pub mod bound_scale;
+pub mod bound_table;
 pub mod fix;
 pub mod float;
 pub mod float_export;

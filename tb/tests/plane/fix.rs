@@ -48,6 +48,65 @@ fn rtl_matches_model_b16_k2() {
     rtl_matches_model::<rtl::PlaneFixB16<2>>(FixFormat::b16(), 10_000, 4);
 }
 
+/// The 9-clock configuration (every bound cut, the 6-clock slab tester, one wait register) computes
+/// the same results as the model, three clocks later.
+#[test]
+fn rtl_matches_model_b12_k4_p9() {
+    assert_eq!(<rtl::PlaneFixB12P9<4> as rtl::SlabIo>::LATENCY, 9);
+    rtl_matches_model::<rtl::PlaneFixB12P9<4>>(FixFormat::b12(), 20_000, 12);
+}
+
+#[test]
+fn rtl_matches_model_b8_k8_p9() {
+    rtl_matches_model::<rtl::PlaneFixB8P9<8>>(FixFormat::b8(), 10_000, 13);
+}
+
+#[test]
+fn rtl_matches_model_b16_k1_p9() {
+    rtl_matches_model::<rtl::PlaneFixB16P9<1>>(FixFormat::b16(), 10_000, 14);
+}
+
+/// Every depth between the default and the deepest: each bound cut alone and in pairs, with the slab
+/// tester at 4 clocks (waits 0 to 3) or 6 (waits 0 or 1), is the model, `latency` clocks later.
+#[test]
+fn rtl_matches_model_at_every_depth_b8_k2() {
+    use rtl::plane::fix::cut;
+    use rtl::slab::fix::{SLAB_FIX_CUTS as S4, SLAB_FIX_CUTS_DEEP as S6};
+    type P<const S: usize, const C: usize> =
+        rtl::plane::fix::PlaneFix<8, 9, 12, 14, 8, 11, 20, 21, 20, 2, S, C>;
+    fn one<X: PlaneFixIo>(want_latency: usize) {
+        assert_eq!(X::LATENCY, want_latency);
+        rtl_matches_model::<X>(FixFormat::b8(), 3_000, 20 + want_latency as u64);
+    }
+    one::<P<S4, { cut::PICK }>>(7);
+    one::<P<S4, { cut::TABLE }>>(7);
+    one::<P<S4, { cut::PRODUCT }>>(7);
+    one::<P<S4, { cut::PICK | cut::PRODUCT }>>(8);
+    one::<P<S4, { cut::BOUND_STEPS }>>(9);
+    one::<P<S6, { cut::TABLE | cut::PRODUCT }>>(8);
+}
+
+/// A configuration whose slab tester is longer than its plane path is refused, not run misaligned.
+#[test]
+#[should_panic(expected = "must not be longer than the plane path")]
+fn a_slab_longer_than_the_plane_path_is_refused() {
+    type P = rtl::plane::fix::PlaneFix<
+        8,
+        9,
+        12,
+        14,
+        8,
+        11,
+        20,
+        21,
+        20,
+        1,
+        { rtl::slab::fix::SLAB_FIX_CUTS_DEEP },
+        0,
+    >;
+    let _ = P::for_format(&CullFixFormat::over(FixFormat::b8()));
+}
+
 /// The equivalence check can fail: a model with the planes ignored disagrees with the RTL.
 #[test]
 fn a_wrong_model_is_caught() {
@@ -58,52 +117,70 @@ fn a_wrong_model_is_caught() {
     assert!(run_checked(&mut dut, stream, |v| wrong.model(&v.0, &v.1)).is_err());
 }
 
-#[test]
-fn valid_leaves_latency_clocks_after_it_enters() {
-    let c = ctx(FixFormat::b12(), 2);
+/// In the waveform, `valid_out` rises exactly the configuration's latency after `valid_in`.
+fn valid_leaves_latency_clocks_after_it_enters<S: PlaneFixIo>(want: usize) {
+    let c = ctx(FixFormat::b12(), S::PLANES);
+    let name = rtl::export::plane_fix_module_of::<S>(&c.cf);
     let path = tb::out_dir()
         .join("vcd")
-        .join("plane_fix_b12_k2_latency.vcd");
+        .join(format!("{name}_latency.vcd"));
     let tests: Vec<_> = node_fix_vectors(c, 6, 4, false).collect();
     let mut stream = vec![tests[0]];
-    stream.extend(std::iter::repeat_n(None, 9));
+    stream.extend(std::iter::repeat_n(None, 12));
     stream.extend(tests[1..].iter().cloned());
     {
-        let mut dut = SlabRtl::wrap(rtl::PlaneFixB12::<2>::new(&c.cf))
-            .vcd_to(&path)
-            .unwrap();
+        let mut dut = SlabRtl::wrap(S::for_format(&c.cf)).vcd_to(&path).unwrap();
         let n = run_checked(&mut dut, stream, |v| c.model(&v.0, &v.1))
             .unwrap_or_else(|e| panic!("{e}"));
         assert_eq!(n, 4);
     }
     let trace = read_trace(&path, &["valid_in", "valid_out"]).unwrap();
     trace
-        .check_valid_latency(2, rtl::plane::fix::PLANE_FIX_LATENCY)
+        .check_valid_latency(2, want)
         .unwrap_or_else(|e| panic!("{e}"));
 }
 
-fn export<S: PlaneFixIo>(c: &CullFixCtx) -> (String, std::path::PathBuf) {
-    let name = c.name();
+#[test]
+fn valid_leaves_6_clocks_after_it_enters() {
+    valid_leaves_latency_clocks_after_it_enters::<rtl::PlaneFixB12<2>>(
+        rtl::plane::fix::PLANE_FIX_LATENCY,
+    );
+}
+
+#[test]
+fn valid_leaves_9_clocks_after_it_enters_in_the_deep_configuration() {
+    valid_leaves_latency_clocks_after_it_enters::<rtl::PlaneFixB12P9<2>>(9);
+}
+
+/// `(module name, Verilog, path)` of the tester `S` over `c`'s format, written for the tools.
+fn export<S: PlaneFixIo>(c: &CullFixCtx) -> (String, String, std::path::PathBuf) {
+    let name = rtl::export::plane_fix_module_of::<S>(&c.cf);
     let v = rtl::export::verilog_named(&mut S::for_format(&c.cf), &name);
     let path = tb::verilog_tools::write(&v, &name);
-    (v, path)
+    (name, v, path)
 }
 
 #[test]
 fn exported_verilog_is_lint_clean_and_accepted_by_icarus() {
     let c = ctx(FixFormat::b12(), 4);
-    let (_, path) = export::<rtl::PlaneFixB12<4>>(&c);
+    let (_, _, path) = export::<rtl::PlaneFixB12<4>>(&c);
+    tb::verilog_tools::lint(&path).unwrap_or_else(|e| panic!("{e}"));
+    tb::verilog_tools::icarus(&path).unwrap_or_else(|e| panic!("{e}"));
+    let (_, _, path) = export::<rtl::PlaneFixB12P9<4>>(&c);
     tb::verilog_tools::lint(&path).unwrap_or_else(|e| panic!("{e}"));
     tb::verilog_tools::icarus(&path).unwrap_or_else(|e| panic!("{e}"));
     let c = ctx(FixFormat::b16(), 1);
-    let (_, path) = export::<rtl::PlaneFixB16<1>>(&c);
+    let (_, _, path) = export::<rtl::PlaneFixB16<1>>(&c);
+    tb::verilog_tools::lint(&path).unwrap_or_else(|e| panic!("{e}"));
+    let (name, _, path) = export::<rtl::PlaneFixB16P9<1>>(&c);
+    assert!(name.ends_with("_k1_p9"), "{name}");
     tb::verilog_tools::lint(&path).unwrap_or_else(|e| panic!("{e}"));
 }
 
 fn cross_simulate<S: PlaneFixIo>(fmt: FixFormat, n: u64, lockstep: u64, seed: u64) {
     let c = ctx(fmt, S::PLANES);
-    let (v, _) = export::<S>(&c);
-    let h = tb::verilator::build(&v, &c.name(), &tb::out_dir().join("verilator"))
+    let (name, v, _) = export::<S>(&c);
+    let h = tb::verilator::build(&v, &name, &tb::out_dir().join("verilator"))
         .unwrap_or_else(|e| panic!("{e}"));
     let stats = xsim(
         c,
@@ -134,6 +211,16 @@ fn verilator_matches_rtl_and_model_b8_k8() {
 #[test]
 fn verilator_matches_rtl_and_model_b16_k1() {
     cross_simulate::<rtl::PlaneFixB16<1>>(FixFormat::b16(), 50_000, 10_000, 9);
+}
+
+#[test]
+fn verilator_matches_rtl_and_model_b12_k4_p9() {
+    cross_simulate::<rtl::PlaneFixB12P9<4>>(FixFormat::b12(), 100_000, 20_000, 17);
+}
+
+#[test]
+fn verilator_matches_rtl_and_model_b16_k1_p9() {
+    cross_simulate::<rtl::PlaneFixB16P9<1>>(FixFormat::b16(), 50_000, 10_000, 18);
 }
 
 /// Conservativeness of the model: the interval encloses the exact clip, nothing the exact clip keeps is
