@@ -155,7 +155,7 @@ pub fn plane_fix_module(cf: &CullFixFormat, k: usize) -> String {
 }
 
 /// Module name of the table option with slab cuts `scuts` and plane cuts `pcuts`: the default name
-/// with the depth's suffix from [`crate::plane::fix::PLANE_FIX_DEPTHS`] (`_p9`), or `_c<slab>_<plane>`
+/// with the depth's suffix from [`crate::plane::fix::PLANE_FIX_DEPTHS`] (`_p11`), or `_c<slab>_<plane>`
 /// in hex for a depth not in that list.
 pub fn plane_fix_module_cuts(cf: &CullFixFormat, k: usize, scuts: usize, pcuts: usize) -> String {
     let suffix = match crate::plane::fix::PLANE_FIX_DEPTHS
@@ -184,7 +184,7 @@ pub fn plane_frac_module(cf: &CullFixFormat, k: usize) -> String {
 }
 
 /// `(module, Verilog, latency)` of the cull-plane testers in the synthesis report: the table option over
-/// b8, b12 and b16 at the default depth and the 9-clock depth and the fraction option over b12 and b16,
+/// b8, b12 and b16 at the default depth and the 11-clock depth and the fraction option over b12 and b16,
 /// each with 1 and 4 planes; the float tester with 1 plane.
 pub fn plane_verilog() -> Vec<(String, String, usize)> {
     fn named<S: crate::SlabIo>(module: String, mut uut: S) -> (String, String, usize) {
@@ -204,12 +204,12 @@ pub fn plane_verilog() -> Vec<(String, String, usize)> {
         fix::<crate::PlaneFixB12<4>>(&b12),
         fix::<crate::PlaneFixB16<1>>(&b16),
         fix::<crate::PlaneFixB16<4>>(&b16),
-        fix::<crate::PlaneFixB8P9<1>>(&b8),
-        fix::<crate::PlaneFixB8P9<4>>(&b8),
-        fix::<crate::PlaneFixB12P9<1>>(&b12),
-        fix::<crate::PlaneFixB12P9<4>>(&b12),
-        fix::<crate::PlaneFixB16P9<1>>(&b16),
-        fix::<crate::PlaneFixB16P9<4>>(&b16),
+        fix::<crate::PlaneFixB8P11<1>>(&b8),
+        fix::<crate::PlaneFixB8P11<4>>(&b8),
+        fix::<crate::PlaneFixB12P11<1>>(&b12),
+        fix::<crate::PlaneFixB12P11<4>>(&b12),
+        fix::<crate::PlaneFixB16P11<1>>(&b16),
+        fix::<crate::PlaneFixB16P11<4>>(&b16),
         named(
             plane_frac_module(&b12, 1),
             crate::PlaneFracB12::<1>::new(&b12),

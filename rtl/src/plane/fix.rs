@@ -1,6 +1,6 @@
 //! `PlaneFix`: the fixed-point slab tester chained with `K` cull planes (Arm US 2025/0259373), fully
 //! pipelined (one node test per clock), [`plane_fix_latency`] clocks: 6 by default
-//! ([`PLANE_FIX_LATENCY`]), 9 in the deep configuration ([`PLANE_FIX_DEEP`]). Bit for bit
+//! ([`PLANE_FIX_LATENCY`]), 11 in the deep configuration ([`PLANE_FIX_DEEP`]). Bit for bit
 //! `golden::plane::fix::node_fix` (read `golden::plane::fix` for the arithmetic and the conservativeness
 //! argument); ports mirror `golden::plane::fix::{NodeFixRay, FixNode}` and `PlaneFixOut`.
 //!
@@ -9,7 +9,7 @@
 //! bits; `WB = G + N + 4`: offset bits; `SB = G + N + 5`: `S` bits; `EB = N + FD + 4`: `den` bits; `K`:
 //! planes per node, `1..=8`. Stable Rust cannot compute widths from widths, hence the list, checked
 //! against the format by [`PlaneFix::new`]. `SCUTS`: the slab tester's cut points
-//! ([`crate::slab::fix::cut`]); `PCUTS`: the plane bound's ([`cut`]).
+//! ([`crate::slab::fix::cut`]); `PCUTS`: the plane path's, in the sums and the bound ([`cut`]).
 //!
 //! # Ports
 //! The slab tester's (`ray_o_lo`, `ray_o_hi`, `ray_m_lo`, `ray_m_hi`, `ray_neg`, `ray_t_min`, `ray_t_max`,
@@ -20,11 +20,11 @@
 //! # Stages
 //! The slab tester runs in parallel with the plane arithmetic and the two meet at stage 5. Where the
 //! slab tester's latency ([`crate::slab::fix::slab_fix_latency`]`(SCUTS)`) is shorter than the plane
-//! path's to stage 4 (`4 +` [`PlaneBound::latency`]`(PCUTS)`), its results wait in up to three
-//! registers (`slab_*_qw`), so both arrive together; a configuration whose slab path is the longer is
-//! refused by [`PlaneFix::new`].
-//! 1. `_q1`: per plane, [`PlaneSums`]: `S_lo`, `den_lo`, `den_hi`, the operands chosen by the sign of
-//!    each normal component.
+//! path's to stage 4 (`4 +` [`PlaneSums::latency`]`(PCUTS) +` [`PlaneBound::latency`]`(PCUTS)`), its
+//! results wait in up to five registers (`slab_*_qw`), so both arrive together; a configuration whose
+//! slab path is the longer is refused by [`PlaneFix::new`].
+//! 1. `_q1`: per plane, [`PlaneSums`] (its own cut points [`cut::TERMS`], [`cut::PRODUCTS`] inside):
+//!    `S_lo`, `den_lo`, `den_hi`, the operands chosen by the sign of each normal component.
 //! 2. `_q2`: per plane, [`PlaneBound`] (its own cut points [`cut::PICK`], [`cut::TABLE`],
 //!    [`cut::PRODUCT`] inside): the entry bound (or `-inf`), the exit bound (or `+inf`), the
 //!    parallel-cull flag.
@@ -43,8 +43,8 @@ use crate::slab::fix::{
 use golden::plane::fix::{CullFixFormat, FixNode, NodeFixRay, PlaneFixOut, MAX_PLANES};
 use rust_hdl::prelude::*;
 
-/// The cut points inside each plane's bound ([`PlaneBound`]): one bit each of `PlaneFix`'s `PCUTS`,
-/// a register where set, a wire where clear.
+/// The cut points of the plane path, inside each plane's sums ([`PlaneSums`]) and bound
+/// ([`PlaneBound`]): one bit each of `PlaneFix`'s `PCUTS`, a register where set, a wire where clear.
 pub mod cut {
     /// After the class, `A`, the leading one and the table index (`_qk`).
     pub const PICK: usize = 1 << 0;
@@ -52,27 +52,36 @@ pub mod cut {
     pub const TABLE: usize = 1 << 1;
     /// After the product `A * r` (`_qm`), before the shift, rounding and saturation.
     pub const PRODUCT: usize = 1 << 2;
-    /// All of them.
+    /// The three bound cuts.
     pub const BOUND_STEPS: usize = PICK | TABLE | PRODUCT;
+    /// In each plane's sums ([`PlaneSums`]), after the terms `2 p - lo - hi` (`_qo`).
+    pub const TERMS: usize = 1 << 3;
+    /// In each plane's sums, after the nine products, before the adds (`_qp`).
+    pub const PRODUCTS: usize = 1 << 4;
+    /// The two sums cuts.
+    pub const SUM_STEPS: usize = TERMS | PRODUCTS;
+    /// Every cut of the plane path.
+    pub const ALL: usize = SUM_STEPS | BOUND_STEPS;
 }
 
 /// Most registers the slab tester's results may wait in for the plane path.
-pub const MAX_SLAB_WAIT: usize = 3;
+pub const MAX_SLAB_WAIT: usize = 5;
 
 /// Registers the slab tester's results wait in for the plane path, for slab cuts `scuts` and plane
 /// cuts `pcuts`: the plane path's clocks to stage 4 less the slab tester's latency.
 pub const fn slab_wait(scuts: usize, pcuts: usize) -> usize {
-    let plane = 4 + PlaneBound::<1, 1, 1>::latency(pcuts);
+    let plane =
+        4 + PlaneSums::<1, 1, 1, 1, 1, 1>::latency(pcuts) + PlaneBound::<1, 1, 1>::latency(pcuts);
     let slab = slab_fix_latency(scuts);
     assert!(
         plane >= slab && plane - slab <= MAX_SLAB_WAIT,
-        "PlaneFix: the slab tester must not be longer than the plane path, nor shorter by more than 3"
+        "PlaneFix: the slab tester must not be longer than the plane path, nor shorter by more than 5"
     );
     plane - slab
 }
 
 /// Clocks from a node test entering `PlaneFix` to its result leaving, for slab cuts `scuts` and plane
-/// cuts `pcuts`: `6 +` the registers inside the bound.
+/// cuts `pcuts`: `6 +` the registers inside the sums and the bound.
 pub const fn plane_fix_latency(scuts: usize, pcuts: usize) -> usize {
     slab_fix_latency(scuts) + slab_wait(scuts, pcuts) + 2
 }
@@ -80,8 +89,8 @@ pub const fn plane_fix_latency(scuts: usize, pcuts: usize) -> usize {
 /// The plane cut points of the default tester: none (the bound in one clock).
 pub const PLANE_FIX_CUTS: usize = 0;
 
-/// The deep configuration: `(SCUTS, PCUTS)` = the 6-clock slab tester and every bound cut.
-pub const PLANE_FIX_DEEP: (usize, usize) = (SLAB_FIX_CUTS_DEEP, cut::BOUND_STEPS);
+/// The deep configuration: `(SCUTS, PCUTS)` = the 6-clock slab tester and every plane cut (11 clocks).
+pub const PLANE_FIX_DEEP: (usize, usize) = (SLAB_FIX_CUTS_DEEP, cut::ALL);
 
 /// Clocks from a node test entering the default `PlaneFix` to its result leaving.
 pub const PLANE_FIX_LATENCY: usize = plane_fix_latency(SLAB_FIX_CUTS, PLANE_FIX_CUTS);
@@ -89,7 +98,7 @@ pub const PLANE_FIX_LATENCY: usize = plane_fix_latency(SLAB_FIX_CUTS, PLANE_FIX_
 /// The pipeline depths that are exported: `(SCUTS, PCUTS, module-name suffix)`; the default has none.
 pub const PLANE_FIX_DEPTHS: [(usize, usize, &str); 2] = [
     (SLAB_FIX_CUTS, PLANE_FIX_CUTS, ""),
-    (PLANE_FIX_DEEP.0, PLANE_FIX_DEEP.1, "_p9"),
+    (PLANE_FIX_DEEP.0, PLANE_FIX_DEEP.1, "_p11"),
 ];
 
 /// The chained fixed-point slab + cull-plane tester; see the module documentation.
@@ -240,7 +249,7 @@ impl<
             slab_hit_qw: Cut::chain(wait),
             slab_entry_qw: Cut::chain(wait),
             slab_exit_qw: Cut::chain(wait),
-            sums: std::array::from_fn(|_| Default::default()),
+            sums: std::array::from_fn(|_| PlaneSums::new(PCUTS)),
             s_q1: std::array::from_fn(|_| Default::default()),
             dl_q1: std::array::from_fn(|_| Default::default()),
             dh_q1: std::array::from_fn(|_| Default::default()),
@@ -404,6 +413,7 @@ impl<
     #[hdl_gen]
     fn update(&mut self) {
         for k in 0..K {
+            self.sums[k].clock.next = self.clock.val();
             self.s_q1[k].clock.next = self.clock.val();
             self.dl_q1[k].clock.next = self.clock.val();
             self.dh_q1[k].clock.next = self.clock.val();
@@ -463,6 +473,16 @@ impl<
         self.slab_hit_qw[2].d.next = self.slab_hit_qw[1].q.val();
         self.slab_entry_qw[2].d.next = self.slab_entry_qw[1].q.val();
         self.slab_exit_qw[2].d.next = self.slab_exit_qw[1].q.val();
+        self.slab_valid_qw[3].d.next = self.slab_valid_qw[2].q.val();
+        self.slab_tag_qw[3].d.next = self.slab_tag_qw[2].q.val();
+        self.slab_hit_qw[3].d.next = self.slab_hit_qw[2].q.val();
+        self.slab_entry_qw[3].d.next = self.slab_entry_qw[2].q.val();
+        self.slab_exit_qw[3].d.next = self.slab_exit_qw[2].q.val();
+        self.slab_valid_qw[4].d.next = self.slab_valid_qw[3].q.val();
+        self.slab_tag_qw[4].d.next = self.slab_tag_qw[3].q.val();
+        self.slab_hit_qw[4].d.next = self.slab_hit_qw[3].q.val();
+        self.slab_entry_qw[4].d.next = self.slab_entry_qw[3].q.val();
+        self.slab_exit_qw[4].d.next = self.slab_exit_qw[3].q.val();
 
         // Stage 1: each plane's sums, operands chosen by the sign of its normal components.
         for k in 0..K {
@@ -625,22 +645,22 @@ impl<
             self.ex_l5.next = self.ex_q4[1].q.val();
         }
         if (self.en_l5.val() ^ self.sign_t.val())
-            > (self.slab_entry_qw[2].q.val() ^ self.sign_t.val())
+            > (self.slab_entry_qw[4].q.val() ^ self.sign_t.val())
         {
             self.entry_q5.d.next = self.en_l5.val();
         } else {
-            self.entry_q5.d.next = self.slab_entry_qw[2].q.val();
+            self.entry_q5.d.next = self.slab_entry_qw[4].q.val();
         }
         if (self.ex_l5.val() ^ self.sign_t.val())
-            < (self.slab_exit_qw[2].q.val() ^ self.sign_t.val())
+            < (self.slab_exit_qw[4].q.val() ^ self.sign_t.val())
         {
             self.exit_q5.d.next = self.ex_l5.val();
         } else {
-            self.exit_q5.d.next = self.slab_exit_qw[2].q.val();
+            self.exit_q5.d.next = self.slab_exit_qw[4].q.val();
         }
-        self.live_q5.d.next = self.slab_hit_qw[2].q.val() & !self.par_q4.q.val();
-        self.valid_q5.d.next = self.slab_valid_qw[2].q.val();
-        self.tag_q5.d.next = self.slab_tag_qw[2].q.val();
+        self.live_q5.d.next = self.slab_hit_qw[4].q.val() & !self.par_q4.q.val();
+        self.valid_q5.d.next = self.slab_valid_qw[4].q.val();
+        self.tag_q5.d.next = self.slab_tag_qw[4].q.val();
 
         // Stage 6: the cull decision.
         self.entry_q6.d.next = self.entry_q5.q.val();

@@ -307,7 +307,7 @@ impl<
             zero_m: Constant::new(bits::<MB>(0)),
             num_bits: Constant::new(bits::<8>(SB as u64)),
             slab: SlabFix::new(&cf.base),
-            sums: std::array::from_fn(|_| Default::default()),
+            sums: std::array::from_fn(|_| PlaneSums::new(0)),
             s_q1: std::array::from_fn(|_| Default::default()),
             dl_q1: std::array::from_fn(|_| Default::default()),
             dh_q1: std::array::from_fn(|_| Default::default()),
@@ -543,6 +543,7 @@ impl<
 
         // Stage 1: each plane's sums; a negative normal component takes o_hi and swaps the d bounds.
         for k in 0..K {
+            self.sums[k].clock.next = self.clock.val();
             self.sums[k].n0.next = self.plane_nx[k].val();
             self.sums[k].n1.next = self.plane_ny[k].val();
             self.sums[k].n2.next = self.plane_nz[k].val();

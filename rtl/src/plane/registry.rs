@@ -12,14 +12,14 @@ pub type PlaneFixB12<const K: usize> = PlaneFix<12, 13, 16, 20, 8, 14, 24, 25, 2
 pub type PlaneFixB8<const K: usize> = PlaneFix<8, 9, 12, 14, 8, 11, 20, 21, 20, K>;
 /// The same over b16 (`FD = 14`).
 pub type PlaneFixB16<const K: usize> = PlaneFix<16, 17, 20, 24, 8, 17, 28, 29, 26, K>;
-/// [`PlaneFixB8`] in the deep configuration (9 clocks, [`PLANE_FIX_DEEP`]).
-pub type PlaneFixB8P9<const K: usize> =
+/// [`PlaneFixB8`] in the deep configuration (11 clocks, [`PLANE_FIX_DEEP`]).
+pub type PlaneFixB8P11<const K: usize> =
     PlaneFix<8, 9, 12, 14, 8, 11, 20, 21, 20, K, { PLANE_FIX_DEEP.0 }, { PLANE_FIX_DEEP.1 }>;
-/// [`PlaneFixB12`] in the deep configuration (9 clocks, [`PLANE_FIX_DEEP`]).
-pub type PlaneFixB12P9<const K: usize> =
+/// [`PlaneFixB12`] in the deep configuration (11 clocks, [`PLANE_FIX_DEEP`]).
+pub type PlaneFixB12P11<const K: usize> =
     PlaneFix<12, 13, 16, 20, 8, 14, 24, 25, 23, K, { PLANE_FIX_DEEP.0 }, { PLANE_FIX_DEEP.1 }>;
-/// [`PlaneFixB16`] in the deep configuration (9 clocks, [`PLANE_FIX_DEEP`]).
-pub type PlaneFixB16P9<const K: usize> =
+/// [`PlaneFixB16`] in the deep configuration (11 clocks, [`PLANE_FIX_DEEP`]).
+pub type PlaneFixB16P11<const K: usize> =
     PlaneFix<16, 17, 20, 24, 8, 17, 28, 29, 26, K, { PLANE_FIX_DEEP.0 }, { PLANE_FIX_DEEP.1 }>;
 
 /// The chained float node tester (slab + 1 cull plane) in binary16.

@@ -48,26 +48,27 @@ fn rtl_matches_model_b16_k2() {
     rtl_matches_model::<rtl::PlaneFixB16<2>>(FixFormat::b16(), 10_000, 4);
 }
 
-/// The 9-clock configuration (every bound cut, the 6-clock slab tester, one wait register) computes
-/// the same results as the model, three clocks later.
+/// The 11-clock configuration (every sums and bound cut, the 6-clock slab tester, three wait
+/// registers) computes the same results as the model, five clocks later.
 #[test]
-fn rtl_matches_model_b12_k4_p9() {
-    assert_eq!(<rtl::PlaneFixB12P9<4> as rtl::SlabIo>::LATENCY, 9);
-    rtl_matches_model::<rtl::PlaneFixB12P9<4>>(FixFormat::b12(), 20_000, 12);
+fn rtl_matches_model_b12_k4_p11() {
+    assert_eq!(<rtl::PlaneFixB12P11<4> as rtl::SlabIo>::LATENCY, 11);
+    rtl_matches_model::<rtl::PlaneFixB12P11<4>>(FixFormat::b12(), 20_000, 12);
 }
 
 #[test]
-fn rtl_matches_model_b8_k8_p9() {
-    rtl_matches_model::<rtl::PlaneFixB8P9<8>>(FixFormat::b8(), 10_000, 13);
+fn rtl_matches_model_b8_k8_p11() {
+    rtl_matches_model::<rtl::PlaneFixB8P11<8>>(FixFormat::b8(), 10_000, 13);
 }
 
 #[test]
-fn rtl_matches_model_b16_k1_p9() {
-    rtl_matches_model::<rtl::PlaneFixB16P9<1>>(FixFormat::b16(), 10_000, 14);
+fn rtl_matches_model_b16_k1_p11() {
+    rtl_matches_model::<rtl::PlaneFixB16P11<1>>(FixFormat::b16(), 10_000, 14);
 }
 
-/// Every depth between the default and the deepest: each bound cut alone and in pairs, with the slab
-/// tester at 4 clocks (waits 0 to 3) or 6 (waits 0 or 1), is the model, `latency` clocks later.
+/// Every depth between the default and the deepest: each sums and bound cut alone, some in pairs and
+/// all together, with the slab tester at 4 clocks (waits 0 to 5) or 6 (waits 0 to 3), is the model,
+/// `latency` clocks later.
 #[test]
 fn rtl_matches_model_at_every_depth_b8_k2() {
     use rtl::plane::fix::cut;
@@ -84,6 +85,11 @@ fn rtl_matches_model_at_every_depth_b8_k2() {
     one::<P<S4, { cut::PICK | cut::PRODUCT }>>(8);
     one::<P<S4, { cut::BOUND_STEPS }>>(9);
     one::<P<S6, { cut::TABLE | cut::PRODUCT }>>(8);
+    one::<P<S4, { cut::TERMS }>>(7);
+    one::<P<S4, { cut::PRODUCTS }>>(7);
+    one::<P<S6, { cut::SUM_STEPS }>>(8);
+    one::<P<S6, { cut::PRODUCTS | cut::PICK | cut::TABLE }>>(9);
+    one::<P<S4, { cut::ALL }>>(11);
 }
 
 /// A configuration whose slab tester is longer than its plane path is refused, not run misaligned.
@@ -148,8 +154,8 @@ fn valid_leaves_6_clocks_after_it_enters() {
 }
 
 #[test]
-fn valid_leaves_9_clocks_after_it_enters_in_the_deep_configuration() {
-    valid_leaves_latency_clocks_after_it_enters::<rtl::PlaneFixB12P9<2>>(9);
+fn valid_leaves_11_clocks_after_it_enters_in_the_deep_configuration() {
+    valid_leaves_latency_clocks_after_it_enters::<rtl::PlaneFixB12P11<2>>(11);
 }
 
 /// `(module name, Verilog, path)` of the tester `S` over `c`'s format, written for the tools.
@@ -166,14 +172,14 @@ fn exported_verilog_is_lint_clean_and_accepted_by_icarus() {
     let (_, _, path) = export::<rtl::PlaneFixB12<4>>(&c);
     tb::verilog_tools::lint(&path).unwrap_or_else(|e| panic!("{e}"));
     tb::verilog_tools::icarus(&path).unwrap_or_else(|e| panic!("{e}"));
-    let (_, _, path) = export::<rtl::PlaneFixB12P9<4>>(&c);
+    let (_, _, path) = export::<rtl::PlaneFixB12P11<4>>(&c);
     tb::verilog_tools::lint(&path).unwrap_or_else(|e| panic!("{e}"));
     tb::verilog_tools::icarus(&path).unwrap_or_else(|e| panic!("{e}"));
     let c = ctx(FixFormat::b16(), 1);
     let (_, _, path) = export::<rtl::PlaneFixB16<1>>(&c);
     tb::verilog_tools::lint(&path).unwrap_or_else(|e| panic!("{e}"));
-    let (name, _, path) = export::<rtl::PlaneFixB16P9<1>>(&c);
-    assert!(name.ends_with("_k1_p9"), "{name}");
+    let (name, _, path) = export::<rtl::PlaneFixB16P11<1>>(&c);
+    assert!(name.ends_with("_k1_p11"), "{name}");
     tb::verilog_tools::lint(&path).unwrap_or_else(|e| panic!("{e}"));
 }
 
@@ -214,13 +220,13 @@ fn verilator_matches_rtl_and_model_b16_k1() {
 }
 
 #[test]
-fn verilator_matches_rtl_and_model_b12_k4_p9() {
-    cross_simulate::<rtl::PlaneFixB12P9<4>>(FixFormat::b12(), 100_000, 20_000, 17);
+fn verilator_matches_rtl_and_model_b12_k4_p11() {
+    cross_simulate::<rtl::PlaneFixB12P11<4>>(FixFormat::b12(), 100_000, 20_000, 17);
 }
 
 #[test]
-fn verilator_matches_rtl_and_model_b16_k1_p9() {
-    cross_simulate::<rtl::PlaneFixB16P9<1>>(FixFormat::b16(), 50_000, 10_000, 18);
+fn verilator_matches_rtl_and_model_b16_k1_p11() {
+    cross_simulate::<rtl::PlaneFixB16P11<1>>(FixFormat::b16(), 50_000, 10_000, 18);
 }
 
 /// Conservativeness of the model: the interval encloses the exact clip, nothing the exact clip keeps is
