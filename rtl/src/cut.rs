@@ -64,6 +64,56 @@ impl<T: Synth> Logic for Cut<T> {
     }
 }
 
+/// The most clocks a [`Wait`] delays.
+pub const MAX_WAIT: usize = 10;
+
+/// `Wait`: side data held for as many clocks as the unit it travels beside takes, a chain of
+/// [`MAX_WAIT`] cuts of which the first `regs` are registers ([`Cut::chain`]).
+///
+/// # Inputs
+/// `clock`, `d`.
+/// # Outputs
+/// `q`: `d` of `regs` clocks ago.
+#[derive(LogicBlock)]
+pub struct Wait<T: Synth> {
+    pub clock: Signal<In, Clock>,
+    pub d: Signal<In, T>,
+    pub q: Signal<Out, T>,
+    step: [Cut<T>; MAX_WAIT],
+}
+
+impl<T: Synth> Wait<T> {
+    /// A delay of `regs` clocks (at most [`MAX_WAIT`]).
+    pub fn new(regs: usize) -> Self {
+        Wait {
+            clock: Default::default(),
+            d: Default::default(),
+            q: Default::default(),
+            step: Cut::chain(regs),
+        }
+    }
+}
+
+impl<T: Synth> Logic for Wait<T> {
+    #[hdl_gen]
+    fn update(&mut self) {
+        for i in 0..10 {
+            self.step[i].clock.next = self.clock.val();
+        }
+        self.step[0].d.next = self.d.val();
+        self.step[1].d.next = self.step[0].q.val();
+        self.step[2].d.next = self.step[1].q.val();
+        self.step[3].d.next = self.step[2].q.val();
+        self.step[4].d.next = self.step[3].q.val();
+        self.step[5].d.next = self.step[4].q.val();
+        self.step[6].d.next = self.step[5].q.val();
+        self.step[7].d.next = self.step[6].q.val();
+        self.step[8].d.next = self.step[7].q.val();
+        self.step[9].d.next = self.step[8].q.val();
+        self.q.next = self.step[9].q.val();
+    }
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -89,5 +139,34 @@ mod tests {
         wire.connect_all();
         assert_eq!(edge(&mut wire, 5), (5, 5));
         assert_eq!(edge(&mut wire, 9), (9, 9));
+    }
+
+    #[test]
+    fn a_wait_delays_by_its_register_count() {
+        const _: () = assert!(MAX_WAIT == 10, "Wait::update is unrolled for 10 steps");
+        for regs in [0, 1, 3, 10] {
+            let mut w = Wait::<Bits<8>>::new(regs);
+            w.connect_all();
+            let mut seen = vec![];
+            for d in 1..=14u64 {
+                w.d.next = bits::<8>(d);
+                w.clock.next = Clock { clk: false };
+                assert!(simulate(&mut w, 100));
+                w.clock.next = Clock { clk: true };
+                assert!(simulate(&mut w, 100));
+                seen.push(w.q.val().to_u64());
+            }
+            // After the edge of input d, q is the input of regs - 1 edges before (d itself for a wire).
+            let want: Vec<u64> = (1..=14u64)
+                .map(|d| {
+                    if regs == 0 {
+                        d
+                    } else {
+                        (d + 1).saturating_sub(regs as u64)
+                    }
+                })
+                .collect();
+            assert_eq!(seen, want, "{regs} registers");
+        }
     }
 }

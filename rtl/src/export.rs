@@ -70,17 +70,52 @@ pub fn slab_fix_deep_verilog() -> Vec<(String, String, usize)> {
     ]
 }
 
-/// Module name of the float slab tester for a format, e.g. `slab_float_e8m23`.
+/// Module name of the default (9-clock) float slab tester for a format, e.g. `slab_float_e8m23`.
 pub fn slab_float_module(f: &golden::format::float::FloatFormat) -> String {
-    format!("slab_float_{}", f.name())
+    slab_float_module_cuts(f, 0)
 }
 
-/// Verilog of the float slab tester for an instantiated format.
+/// Module name of the float slab tester for a format and cut points: the format's name, then the
+/// suffix of the configuration in [`crate::slab::float::SLAB_FLOAT_DEPTHS`] (`_p13` for the 13-clock
+/// tester), or `_c` and the cut mask in hex for another.
+pub fn slab_float_module_cuts(f: &golden::format::float::FloatFormat, cuts: usize) -> String {
+    let suffix = match crate::slab::float::SLAB_FLOAT_DEPTHS
+        .iter()
+        .find(|(c, _)| *c == cuts)
+    {
+        Some((_, s)) => s.to_string(),
+        None => format!("_c{cuts:02x}"),
+    };
+    format!("slab_float_{}{suffix}", f.name())
+}
+
+/// Verilog of the float slab tester `S`, named after its format and cut points.
+pub fn slab_float_verilog_of<S: crate::slab::float::SlabFloatIo + Block>() -> String {
+    let mut uut = S::make();
+    verilog_named(&mut uut, &slab_float_module_cuts(&S::format(), S::CUTS))
+}
+
+/// Verilog of the default float slab tester for an instantiated format.
 pub fn slab_float_verilog(f: &golden::format::float::FloatFormat) -> Result<String, String> {
-    crate::with_slab_float!(f, S, {
-        let mut uut = S::new();
-        verilog_named(&mut uut, &slab_float_module(f))
-    })
+    crate::with_slab_float!(f, S, { slab_float_verilog_of::<S>() })
+}
+
+/// `(module, Verilog, latency)` of the 13-clock float slab testers over [`crate::SLAB_FLOAT_FORMATS`].
+pub fn slab_float_deep_verilog() -> Vec<(String, String, usize)> {
+    fn one<S: crate::slab::float::SlabFloatIo + Block>() -> (String, String, usize) {
+        (
+            slab_float_module_cuts(&S::format(), S::CUTS),
+            slab_float_verilog_of::<S>(),
+            S::LATENCY,
+        )
+    }
+    vec![
+        one::<crate::SlabFloatE8M23P13>(),
+        one::<crate::SlabFloatE8M15P13>(),
+        one::<crate::SlabFloatE8M7P13>(),
+        one::<crate::SlabFloatE5M10P13>(),
+        one::<crate::SlabFloatE6M5P13>(),
+    ]
 }
 
 /// Verilog of the fixed slab tester for any format of the grid ladder (`FixFormat::grid`), for the fit.
@@ -90,10 +125,7 @@ pub fn slab_fix_verilog_ladder(fmt: &FixFormat) -> Result<String, String> {
 
 /// Verilog of the float slab tester for any format of the float ladder, for the fit.
 pub fn slab_float_verilog_ladder(f: &golden::format::float::FloatFormat) -> Result<String, String> {
-    crate::with_slab_float_ladder!(f, S, {
-        let mut uut = S::new();
-        verilog_named(&mut uut, &slab_float_module(f))
-    })
+    crate::with_slab_float_ladder!(f, S, { slab_float_verilog_of::<S>() })
 }
 
 /// Writes `<dir>/<module>.v` for every preset fixed format and every instantiated float format, and
@@ -125,6 +157,9 @@ pub fn export_all(dir: &Path) -> std::io::Result<Vec<PathBuf>> {
             slab_float_verilog(&f).expect("instantiated"),
             crate::SLAB_FLOAT_LATENCY,
         )?;
+    }
+    for (module, v, lat) in slab_float_deep_verilog() {
+        write(module, v, lat)?;
     }
     for (module, v, lat) in plane_verilog() {
         write(module, v, lat)?;

@@ -8,7 +8,7 @@
 //! | [`plane`] | the cull-plane testers, fixed (table and quotient options) and float | `golden::plane` |
 //! | [`bundle`] | the AllHit / AnyHit edge testers, the pairs and the results processor | `golden::bundle` |
 //!
-//! Shared: [`io`] (the testbench interface of the slab-shaped testers), [`cut`] (pipeline cut points), [`delay`], [`export`] (Verilog
+//! Shared: [`io`] (the testbench interface of the slab-shaped testers), [`cut`] (pipeline cut points and waits), [`delay`], [`export`] (Verilog
 //! export of every configuration). Which configurations exist is said once per family, in its `registry`
 //! (and the slab tester's format [`slab::ladder`]); their aliases and format lists are re-exported here.
 

@@ -108,18 +108,28 @@ impl<S: SlabIo> PipelinedDut for SlabRtl<S> {
 
 /// Drivers for the two-operand float units (`FpAdd`, `FpMul`): operand pairs in, result patterns out.
 macro_rules! fp_unit_driver {
-    ($name:ident, $block:ident, $latency:expr, $what:literal) => {
+    ($name:ident, $block:ident, $latency:path, $what:literal) => {
         #[doc = concat!("A float ", $what, " in simulation.")]
         pub struct $name<const E: usize, const M: usize, const N: usize> {
             /// The block.
             pub uut: rtl::$block<E, M, N>,
+            latency: usize,
         }
 
         impl<const E: usize, const M: usize, const N: usize> $name<E, M, N> {
+            /// The unit without optional cut points.
             pub fn new(mode: golden::format::float::Rounding) -> Self {
-                let mut uut = rtl::$block::new(mode);
+                Self::with_cuts(mode, 0)
+            }
+
+            /// The unit with the optional cut points `cuts` (its `with_cuts`).
+            pub fn with_cuts(mode: golden::format::float::Rounding, cuts: usize) -> Self {
+                let mut uut = rtl::$block::with_cuts(mode, cuts);
                 uut.connect_all();
-                $name { uut }
+                $name {
+                    uut,
+                    latency: $latency(cuts),
+                }
             }
         }
 
@@ -128,7 +138,7 @@ macro_rules! fp_unit_driver {
             type Out = u32;
 
             fn latency(&self) -> usize {
-                $latency
+                self.latency
             }
 
             fn step(&mut self, input: Option<(u16, &(u32, u32))>) -> Option<(u16, u32)> {
@@ -161,5 +171,5 @@ macro_rules! fp_unit_driver {
     };
 }
 
-fp_unit_driver!(FpAddRtl, FpAdd, rtl::fp::add::FP_ADD_LATENCY, "adder");
-fp_unit_driver!(FpMulRtl, FpMul, rtl::fp::mul::FP_MUL_LATENCY, "multiplier");
+fp_unit_driver!(FpAddRtl, FpAdd, rtl::fp::add::fp_add_latency, "adder");
+fp_unit_driver!(FpMulRtl, FpMul, rtl::fp::mul::fp_mul_latency, "multiplier");

@@ -2,8 +2,8 @@
 //!
 //! | block | file | what it does |
 //! | --- | --- | --- |
-//! | [`add::FpAdd`] | `fp/add.rs` | add and subtract, 3 clocks, one rounding mode a unit |
-//! | [`mul::FpMul`] | `fp/mul.rs` | multiply, 3 clocks |
+//! | [`add::FpAdd`] | `fp/add.rs` | add and subtract, 3 clocks (up to 5 with its cut points), one rounding mode a unit |
+//! | [`mul::FpMul`] | `fp/mul.rs` | multiply, 3 clocks (up to 5 with its cut points) |
 //! | [`round::FpRound`] | `fp/round.rs` | the shared rounding of a normalised significand |
 //! | [`sig_mul::SigMul`] | `fp/sig_mul.rs` | significand product and its leading one (hand-written Verilog) |
 //! | [`cmp::FpCmp`] | `fp/cmp.rs` | compare |

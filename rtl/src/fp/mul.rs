@@ -1,5 +1,6 @@
 //! `FpMul`: floating-point multiplication of format `E`/`M` under a fixed rounding mode, fully pipelined,
-//! [`FP_MUL_LATENCY`] clocks. Bit for bit `golden::format::float::FloatFormat::mul` (subnormals kept, canonical
+//! [`FP_MUL_LATENCY`] clocks by default and [`fp_mul_latency`]`(cuts)` with the optional cut points
+//! [`cut`]. Bit for bit `golden::format::float::FloatFormat::mul` (subnormals kept, canonical
 //! NaN).
 //!
 //! # Parameters
@@ -11,19 +12,38 @@
 //! # Stages
 //! 1. `_q1`: unpack (subnormals take exponent 1 and no hidden bit); sum of exponents; special operands
 //!    (NaN, `inf x 0`, infinities, zeros) resolved to their result.
-//! 2. `_q2`: significand product normalised ([`SigMul`]); the result's biased exponent
+//! 2. `_q2`: significand product (cut [`cut::RAW`], optional: the product inside [`SigMul`], side data
+//!    `_qr`), normalised ([`SigMul`]); cut [`cut::PRODUCT`] (`_qp`, optional); the result's biased exponent
 //!    `pos + e_a + e_b - bias - 2M`; below 1, the significand is shifted right into the subnormal range
 //!    with a sticky bit.
 //! 3. `_q3`: round and pack ([`FpRound`]).
 
+use crate::cut::Cut;
 use crate::fp::round::FpRound;
 use crate::fp::sig_mul::SigMul;
 use crate::TAG_BITS;
 use golden::format::float::Rounding;
 use rust_hdl::prelude::*;
 
-/// Clocks from operands in to product out.
-pub const FP_MUL_LATENCY: usize = 3;
+/// The optional cut points of the multiplier, one bit each of the `cuts` argument of
+/// [`FpMul::with_cuts`]: a register where the bit is set, a wire where it is clear.
+pub mod cut {
+    /// After the raw significand product, before its leading-one search (in [`super::SigMul`]; side
+    /// data `_qr`).
+    pub const RAW: usize = 1 << 0;
+    /// After the normalised significand product, before the exponent and the subnormal shift (`_qp`).
+    pub const PRODUCT: usize = 1 << 1;
+    /// Every optional cut.
+    pub const ALL: usize = RAW | PRODUCT;
+}
+
+/// Clocks from operands in to product out with the optional cut points `cuts`: three, and one per cut.
+pub const fn fp_mul_latency(cuts: usize) -> usize {
+    3 + (cuts & cut::ALL).count_ones() as usize
+}
+
+/// Clocks from operands in to product out (no optional cut).
+pub const FP_MUL_LATENCY: usize = fp_mul_latency(0);
 
 /// Pipelined float multiplier; see the module documentation.
 #[derive(LogicBlock)]
@@ -66,7 +86,22 @@ pub struct FpMul<const E: usize, const M: usize, const N: usize> {
     valid_q1: DFF<Bit>,
     tag_q1: DFF<Bits<TAG_BITS>>,
     // stage 2
+    exp_sum_qr: Cut<Bits<N>>,
+    sign_qr: Cut<Bit>,
+    special_qr: Cut<Bit>,
+    special_val_qr: Cut<Bits<N>>,
+    valid_qr: Cut<Bit>,
+    tag_qr: Cut<Bits<TAG_BITS>>,
     prod: SigMul<M, N>,
+    pos_qp: Cut<Bits<N>>,
+    sig_qp: Cut<Bits<N>>,
+    sticky_qp: Cut<Bit>,
+    exp_sum_qp: Cut<Bits<N>>,
+    sign_qp: Cut<Bit>,
+    special_qp: Cut<Bit>,
+    special_val_qp: Cut<Bits<N>>,
+    valid_qp: Cut<Bit>,
+    tag_qp: Cut<Bits<TAG_BITS>>,
     t: Signal<Local, Bits<N>>,
     shift: Signal<Local, Bits<N>>,
     sig_q2: DFF<Bits<N>>,
@@ -85,7 +120,22 @@ pub struct FpMul<const E: usize, const M: usize, const N: usize> {
 }
 
 impl<const E: usize, const M: usize, const N: usize> FpMul<E, M, N> {
+    /// The 3-clock multiplier (no optional cut) rounding in `mode`.
     pub fn new(mode: Rounding) -> Self {
+        Self::with_cuts(mode, 0)
+    }
+
+    /// The multiplier rounding in `mode` with the optional cut points `cuts` ([`cut`]);
+    /// [`fp_mul_latency`]`(cuts)` clocks.
+    pub fn with_cuts(mode: Rounding, cuts: usize) -> Self {
+        assert!(
+            cuts & !cut::ALL == 0,
+            "FpMul: unknown cut bits {:#x} (known: {:#x})",
+            cuts & !cut::ALL,
+            cut::ALL
+        );
+        let r = cuts & cut::RAW != 0;
+        let p = cuts & cut::PRODUCT != 0;
         assert!(
             N == 1 + E + M && E >= 4 && (8..=32).contains(&N),
             "FpMul<{E},{M},{N}>: need N = 1+E+M in 8..=32 and E >= 4"
@@ -128,7 +178,22 @@ impl<const E: usize, const M: usize, const N: usize> FpMul<E, M, N> {
             special_val_q1: Default::default(),
             valid_q1: Default::default(),
             tag_q1: Default::default(),
-            prod: Default::default(),
+            exp_sum_qr: Cut::new(r),
+            sign_qr: Cut::new(r),
+            special_qr: Cut::new(r),
+            special_val_qr: Cut::new(r),
+            valid_qr: Cut::new(r),
+            tag_qr: Cut::new(r),
+            prod: SigMul::new(r),
+            pos_qp: Cut::new(p),
+            sig_qp: Cut::new(p),
+            sticky_qp: Cut::new(p),
+            exp_sum_qp: Cut::new(p),
+            sign_qp: Cut::new(p),
+            special_qp: Cut::new(p),
+            special_val_qp: Cut::new(p),
+            valid_qp: Cut::new(p),
+            tag_qp: Cut::new(p),
             t: Default::default(),
             shift: Default::default(),
             sig_q2: Default::default(),
@@ -173,6 +238,22 @@ impl<const E: usize, const M: usize, const N: usize> Logic for FpMul<E, M, N> {
             valid_q3,
             tag_q3
         );
+        self.exp_sum_qr.clock.next = self.clock.val();
+        self.sign_qr.clock.next = self.clock.val();
+        self.special_qr.clock.next = self.clock.val();
+        self.special_val_qr.clock.next = self.clock.val();
+        self.valid_qr.clock.next = self.clock.val();
+        self.tag_qr.clock.next = self.clock.val();
+        self.prod.clock.next = self.clock.val();
+        self.pos_qp.clock.next = self.clock.val();
+        self.sig_qp.clock.next = self.clock.val();
+        self.sticky_qp.clock.next = self.clock.val();
+        self.exp_sum_qp.clock.next = self.clock.val();
+        self.sign_qp.clock.next = self.clock.val();
+        self.special_qp.clock.next = self.clock.val();
+        self.special_val_qp.clock.next = self.clock.val();
+        self.valid_qp.clock.next = self.clock.val();
+        self.tag_qp.clock.next = self.clock.val();
 
         // Stage 1: unpack, exponent sum, special operands.
         self.exp_a.next = (self.a.val() >> self.frac_bits.val()) & self.exp_mask.val();
@@ -228,11 +309,28 @@ impl<const E: usize, const M: usize, const N: usize> Logic for FpMul<E, M, N> {
         // Stage 2: normalised product; exponent; right shift into the subnormal range with sticky.
         self.prod.a.next = self.sig_a_q1.q.val();
         self.prod.b.next = self.sig_b_q1.q.val();
-        self.t.next = self.prod.pos.val() + self.exp_sum_q1.q.val();
+        // Cut RAW (the product's own register is inside SigMul): the side data.
+        self.exp_sum_qr.d.next = self.exp_sum_q1.q.val();
+        self.sign_qr.d.next = self.sign_q1.q.val();
+        self.special_qr.d.next = self.special_q1.q.val();
+        self.special_val_qr.d.next = self.special_val_q1.q.val();
+        self.valid_qr.d.next = self.valid_q1.q.val();
+        self.tag_qr.d.next = self.tag_q1.q.val();
+        // Cut PRODUCT: the normalised product and the side data.
+        self.pos_qp.d.next = self.prod.pos.val();
+        self.sig_qp.d.next = self.prod.sig.val();
+        self.sticky_qp.d.next = self.prod.sticky.val();
+        self.exp_sum_qp.d.next = self.exp_sum_qr.q.val();
+        self.sign_qp.d.next = self.sign_qr.q.val();
+        self.special_qp.d.next = self.special_qr.q.val();
+        self.special_val_qp.d.next = self.special_val_qr.q.val();
+        self.valid_qp.d.next = self.valid_qr.q.val();
+        self.tag_qp.d.next = self.tag_qr.q.val();
+        self.t.next = self.pos_qp.q.val() + self.exp_sum_qp.q.val();
         if self.t.val() > self.k_n.val() {
             self.bexp_q2.d.next = self.t.val() - self.k_n.val();
-            self.sig_q2.d.next = self.prod.sig.val();
-            self.sticky_q2.d.next = self.prod.sticky.val();
+            self.sig_q2.d.next = self.sig_qp.q.val();
+            self.sticky_q2.d.next = self.sticky_qp.q.val();
             self.shift.next = self.zero_n.val();
         } else {
             if (self.k1_n.val() - self.t.val()) > self.window_n.val() {
@@ -241,15 +339,15 @@ impl<const E: usize, const M: usize, const N: usize> Logic for FpMul<E, M, N> {
                 self.shift.next = self.k1_n.val() - self.t.val();
             }
             self.bexp_q2.d.next = self.one_n.val();
-            self.sig_q2.d.next = self.prod.sig.val() >> self.shift.val();
-            self.sticky_q2.d.next = self.prod.sticky.val()
-                | (self.prod.sig.val() & !(self.ones_n.val() << self.shift.val())).any();
+            self.sig_q2.d.next = self.sig_qp.q.val() >> self.shift.val();
+            self.sticky_q2.d.next = self.sticky_qp.q.val()
+                | (self.sig_qp.q.val() & !(self.ones_n.val() << self.shift.val())).any();
         }
-        self.sign_q2.d.next = self.sign_q1.q.val();
-        self.special_q2.d.next = self.special_q1.q.val();
-        self.special_val_q2.d.next = self.special_val_q1.q.val();
-        self.valid_q2.d.next = self.valid_q1.q.val();
-        self.tag_q2.d.next = self.tag_q1.q.val();
+        self.sign_q2.d.next = self.sign_qp.q.val();
+        self.special_q2.d.next = self.special_qp.q.val();
+        self.special_val_q2.d.next = self.special_val_qp.q.val();
+        self.valid_q2.d.next = self.valid_qp.q.val();
+        self.tag_q2.d.next = self.tag_qp.q.val();
 
         // Stage 3: round and pack.
         self.round.sign.next = self.sign_q2.q.val();

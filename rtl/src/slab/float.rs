@@ -1,16 +1,19 @@
 //! `SlabFloat`: the float AABB slab tester of format `E`/`M`, fully pipelined (one test per clock),
-//! [`SLAB_FLOAT_LATENCY`] clocks. Bit for bit `golden::slab::float::slab_float` (read it for the arithmetic
+//! [`SLAB_FLOAT_LATENCY`] (9) clocks by default, [`slab_float_latency`]`(CUTS)` with the optional cut
+//! points of its units ([`cut`]; 13 clocks with all, [`SLAB_FLOAT_CUTS_DEEP`]). Bit for bit `golden::slab::float::slab_float` (read it for the arithmetic
 //! and the conservativeness argument); ports mirror `golden::slab::float::{FloatRay, FloatBox,
 //! SlabFloatOut}` as `SlabFix`'s mirror the fixed-point types.
 //!
 //! # Parameters
-//! `E >= 4`, `M`, `N = 1 + E + M <= 32`.
+//! `E >= 4`, `M`, `N = 1 + E + M <= 32`; `CUTS`, the optional cut points ([`cut`], default none).
 //!
 //! # Stages
+//! Clock numbers are those of the default; each optional cut adds a clock to its unit.
 //! 1. clocks 1-3: six [`FpAdd`] — `e` rounded down, `x` rounded up, near/far chosen by the direction's
-//!    sign; the empty-box test ([`FpCmp`]); inverse bounds, t range and empty flag wait in [`Delay3`] lines.
+//!    sign (cuts [`cut::ADD_ALIGN`], [`cut::ADD_NORM`]); the empty-box test ([`FpCmp`]); inverse bounds,
+//!    t range and empty flag wait in [`Wait`] lines as long as the units take.
 //! 2. clocks 4-6: six [`FpMul`] — `RD(e * m)`, `RU(x * m)`, the inverse bound chosen by the sign of `e`, `x`
-//!    (either zero counts as non-negative).
+//!    (either zero counts as non-negative) (cuts [`cut::MUL_RAW`], [`cut::MUL_PRODUCT`]).
 //! 3. clock 7 (`_q7`): a NaN product (`0 x inf`) becomes `-inf` for an entry, `+inf` for an exit.
 //! 4. clock 8 (`_q8`): first level of the max (entry) and min (exit) trees, `max(a, b) = a < b ? b : a`,
 //!    `min(a, b) = b < a ? b : a`.
@@ -20,25 +23,84 @@
 //! Every comparator reads registers only: a comparator fed from logic that reads other children in the
 //! same `always` block is a combinational cycle at block granularity for Verilator (UNOPTFLAT).
 
-use crate::delay::Delay3;
-use crate::fp::add::{FpAdd, FP_ADD_LATENCY};
+use crate::cut::Wait;
+use crate::fp::add::{fp_add_latency, FpAdd};
 use crate::fp::cmp::FpCmp;
-use crate::fp::mul::{FpMul, FP_MUL_LATENCY};
+use crate::fp::mul::{fp_mul_latency, FpMul};
 use crate::io::SlabIo;
 use crate::TAG_BITS;
 use golden::format::float::{FloatFormat, Rounding};
 use golden::slab::float::{FloatBox, FloatRay, SlabFloatOut};
 use rust_hdl::prelude::*;
 
-/// Clocks from a test entering `SlabFloat` to its result leaving.
-pub const SLAB_FLOAT_LATENCY: usize = FP_ADD_LATENCY + FP_MUL_LATENCY + 3;
+/// The optional cut points of the float slab tester: one bit each of its `CUTS` parameter, each the cut of
+/// the same name in all six of its adders or multipliers.
+pub mod cut {
+    /// [`crate::fp::add::cut::ALIGN`] in the six adders.
+    pub const ADD_ALIGN: usize = 1 << 0;
+    /// [`crate::fp::add::cut::NORM`] in the six adders.
+    pub const ADD_NORM: usize = 1 << 1;
+    /// [`crate::fp::mul::cut::RAW`] in the six multipliers.
+    pub const MUL_RAW: usize = 1 << 2;
+    /// [`crate::fp::mul::cut::PRODUCT`] in the six multipliers.
+    pub const MUL_PRODUCT: usize = 1 << 3;
+    /// Every optional cut.
+    pub const ALL: usize = ADD_ALIGN | ADD_NORM | MUL_RAW | MUL_PRODUCT;
+
+    /// The adders' cuts of a configuration.
+    pub const fn add(cuts: usize) -> usize {
+        (if cuts & ADD_ALIGN != 0 {
+            crate::fp::add::cut::ALIGN
+        } else {
+            0
+        }) | (if cuts & ADD_NORM != 0 {
+            crate::fp::add::cut::NORM
+        } else {
+            0
+        })
+    }
+
+    /// The multipliers' cuts of a configuration.
+    pub const fn mul(cuts: usize) -> usize {
+        (if cuts & MUL_RAW != 0 {
+            crate::fp::mul::cut::RAW
+        } else {
+            0
+        }) | (if cuts & MUL_PRODUCT != 0 {
+            crate::fp::mul::cut::PRODUCT
+        } else {
+            0
+        })
+    }
+}
+
+/// Clocks from a test entering a `SlabFloat` with cut points `cuts` to its result leaving.
+pub const fn slab_float_latency(cuts: usize) -> usize {
+    fp_add_latency(cut::add(cuts)) + fp_mul_latency(cut::mul(cuts)) + 3
+}
+
+/// Clocks from a test entering the default `SlabFloat` (no optional cut) to its result leaving.
+pub const SLAB_FLOAT_LATENCY: usize = slab_float_latency(0);
+
+/// The cut points of the deepest float slab tester: every optional cut (13 clocks).
+pub const SLAB_FLOAT_CUTS_DEEP: usize = cut::ALL;
+
+/// The configurations that are built (exported, tested, timed): `(cuts, name suffix)`; the module name
+/// is `slab_float_<format><suffix>` (`crate::export::slab_float_module_cuts`).
+pub const SLAB_FLOAT_DEPTHS: [(usize, &str); 2] = [(0, ""), (SLAB_FLOAT_CUTS_DEEP, "_p13")];
+
+const _: () = assert!(slab_float_latency(SLAB_FLOAT_CUTS_DEEP) == 13);
+const _: () = assert!(
+    fp_add_latency(crate::fp::add::cut::ALL) + fp_mul_latency(crate::fp::mul::cut::ALL)
+        <= crate::cut::MAX_WAIT
+);
 
 // Issue 3's goal: the binary32 tester within 12 clocks.
 const _: () = assert!(SLAB_FLOAT_LATENCY <= 12);
 
 /// The float slab tester; see the module documentation.
 #[derive(LogicBlock)]
-pub struct SlabFloat<const E: usize, const M: usize, const N: usize> {
+pub struct SlabFloat<const E: usize, const M: usize, const N: usize, const CUTS: usize = 0> {
     pub clock: Signal<In, Clock>,
     pub valid_in: Signal<In, Bit>,
     pub tag_in: Signal<In, Bits<TAG_BITS>>,
@@ -66,14 +128,11 @@ pub struct SlabFloat<const E: usize, const M: usize, const N: usize> {
     add_x: [FpAdd<E, M, N>; 3],
     empty_cmp: [FpCmp<N>; 3],
     empty: Signal<Local, Bit>,
-    m_lo_d: [Delay3<Bits<N>>; 3],
-    m_hi_d: [Delay3<Bits<N>>; 3],
-    t_min_d1: Delay3<Bits<N>>,
-    t_min_d2: Delay3<Bits<N>>,
-    t_max_d1: Delay3<Bits<N>>,
-    t_max_d2: Delay3<Bits<N>>,
-    empty_d1: Delay3<Bit>,
-    empty_d2: Delay3<Bit>,
+    m_lo_d: [Wait<Bits<N>>; 3],
+    m_hi_d: [Wait<Bits<N>>; 3],
+    t_min_d: Wait<Bits<N>>,
+    t_max_d: Wait<Bits<N>>,
+    empty_d: Wait<Bit>,
     // stage 2: products
     mul_e: [FpMul<E, M, N>; 3],
     mul_x: [FpMul<E, M, N>; 3],
@@ -107,16 +166,24 @@ pub struct SlabFloat<const E: usize, const M: usize, const N: usize> {
     unused_handshake: Signal<Local, Bit>,
 }
 
-impl<const E: usize, const M: usize, const N: usize> SlabFloat<E, M, N> {
+impl<const E: usize, const M: usize, const N: usize, const CUTS: usize> SlabFloat<E, M, N, CUTS> {
     pub fn new() -> Self {
+        assert!(
+            CUTS & !cut::ALL == 0,
+            "SlabFloat: unknown cut bits {:#x} (known: {:#x})",
+            CUTS & !cut::ALL,
+            cut::ALL
+        );
+        let (ac, mc) = (cut::add(CUTS), cut::mul(CUTS));
+        let (la, lm) = (fp_add_latency(ac), fp_mul_latency(mc));
         let f = FloatFormat::new(E as u32, M as u32).expect("valid format");
         assert!(
             N as u32 == f.width() && E >= 4,
             "SlabFloat<{E},{M},{N}>: need N = 1+E+M and E >= 4"
         );
         let inf = f.inf(false) as u64;
-        let adders = |mode| std::array::from_fn(|_| FpAdd::new(mode));
-        let muls = |mode| std::array::from_fn(|_| FpMul::new(mode));
+        let adders = |mode| std::array::from_fn(|_| FpAdd::with_cuts(mode, ac));
+        let muls = |mode| std::array::from_fn(|_| FpMul::with_cuts(mode, mc));
         Self {
             clock: Default::default(),
             valid_in: Default::default(),
@@ -143,14 +210,11 @@ impl<const E: usize, const M: usize, const N: usize> SlabFloat<E, M, N> {
             add_x: adders(Rounding::Up),
             empty_cmp: std::array::from_fn(|_| FpCmp::new(inf)),
             empty: Default::default(),
-            m_lo_d: Default::default(),
-            m_hi_d: Default::default(),
-            t_min_d1: Default::default(),
-            t_min_d2: Default::default(),
-            t_max_d1: Default::default(),
-            t_max_d2: Default::default(),
-            empty_d1: Default::default(),
-            empty_d2: Default::default(),
+            m_lo_d: std::array::from_fn(|_| Wait::new(la)),
+            m_hi_d: std::array::from_fn(|_| Wait::new(la)),
+            t_min_d: Wait::new(la + lm),
+            t_max_d: Wait::new(la + lm),
+            empty_d: Wait::new(la + lm),
             mul_e: muls(Rounding::Down),
             mul_x: muls(Rounding::Up),
             en_q7: Default::default(),
@@ -181,7 +245,9 @@ impl<const E: usize, const M: usize, const N: usize> SlabFloat<E, M, N> {
     }
 }
 
-impl<const E: usize, const M: usize, const N: usize> Default for SlabFloat<E, M, N> {
+impl<const E: usize, const M: usize, const N: usize, const CUTS: usize> Default
+    for SlabFloat<E, M, N, CUTS>
+{
     fn default() -> Self {
         Self::new()
     }
@@ -189,13 +255,19 @@ impl<const E: usize, const M: usize, const N: usize> Default for SlabFloat<E, M,
 
 /// A float slab tester of any format.
 pub trait SlabFloatIo: SlabIo<Ray = FloatRay, Box = FloatBox, Out = SlabFloatOut> {
+    /// The block's optional cut points ([`cut`]).
+    const CUTS: usize;
     /// The format of the block.
     fn format() -> FloatFormat;
     /// A tester.
     fn make() -> Self;
 }
 
-impl<const E: usize, const M: usize, const N: usize> SlabFloatIo for SlabFloat<E, M, N> {
+impl<const E: usize, const M: usize, const N: usize, const CUTS: usize> SlabFloatIo
+    for SlabFloat<E, M, N, CUTS>
+{
+    const CUTS: usize = CUTS;
+
     fn format() -> FloatFormat {
         FloatFormat::new(E as u32, M as u32).expect("valid format")
     }
@@ -205,11 +277,13 @@ impl<const E: usize, const M: usize, const N: usize> SlabFloatIo for SlabFloat<E
     }
 }
 
-impl<const E: usize, const M: usize, const N: usize> SlabIo for SlabFloat<E, M, N> {
+impl<const E: usize, const M: usize, const N: usize, const CUTS: usize> SlabIo
+    for SlabFloat<E, M, N, CUTS>
+{
     type Ray = FloatRay;
     type Box = FloatBox;
     type Out = SlabFloatOut;
-    const LATENCY: usize = SLAB_FLOAT_LATENCY;
+    const LATENCY: usize = slab_float_latency(CUTS);
 
     fn set_clock(&mut self, high: bool) {
         self.clock.next = Clock { clk: high };
@@ -262,7 +336,9 @@ impl<const E: usize, const M: usize, const N: usize> SlabIo for SlabFloat<E, M, 
     }
 }
 
-impl<const E: usize, const M: usize, const N: usize> Logic for SlabFloat<E, M, N> {
+impl<const E: usize, const M: usize, const N: usize, const CUTS: usize> Logic
+    for SlabFloat<E, M, N, CUTS>
+{
     #[hdl_gen]
     fn update(&mut self) {
         dff_setup!(
@@ -270,12 +346,9 @@ impl<const E: usize, const M: usize, const N: usize> Logic for SlabFloat<E, M, N
             exit_a_q8, exit_b_q8, empty_q8, valid_q8, tag_q8, entry_q9, exit_q9, hit_q9, valid_q9,
             tag_q9
         );
-        self.t_min_d1.clock.next = self.clock.val();
-        self.t_min_d2.clock.next = self.clock.val();
-        self.t_max_d1.clock.next = self.clock.val();
-        self.t_max_d2.clock.next = self.clock.val();
-        self.empty_d1.clock.next = self.clock.val();
-        self.empty_d2.clock.next = self.clock.val();
+        self.t_min_d.clock.next = self.clock.val();
+        self.t_max_d.clock.next = self.clock.val();
+        self.empty_d.clock.next = self.clock.val();
 
         // Stage 1: distances (a - b is a + (-b)), the empty test, side data into delay lines.
         self.empty.next = false;
@@ -309,12 +382,9 @@ impl<const E: usize, const M: usize, const N: usize> Logic for SlabFloat<E, M, N
             self.m_lo_d[i].d.next = self.ray_m_lo[i].val();
             self.m_hi_d[i].d.next = self.ray_m_hi[i].val();
         }
-        self.t_min_d1.d.next = self.ray_t_min.val();
-        self.t_min_d2.d.next = self.t_min_d1.q.val();
-        self.t_max_d1.d.next = self.ray_t_max.val();
-        self.t_max_d2.d.next = self.t_max_d1.q.val();
-        self.empty_d1.d.next = self.empty.val();
-        self.empty_d2.d.next = self.empty_d1.q.val();
+        self.t_min_d.d.next = self.ray_t_min.val();
+        self.t_max_d.d.next = self.ray_t_max.val();
+        self.empty_d.d.next = self.empty.val();
 
         // Stage 2: products, the inverse bound chosen by the sign of the distance.
         for i in 0..3 {
@@ -352,9 +422,9 @@ impl<const E: usize, const M: usize, const N: usize> Logic for SlabFloat<E, M, N
                 self.ex_q7[i].d.next = self.mul_x[i].y.val();
             }
         }
-        self.t_min_q7.d.next = self.t_min_d2.q.val();
-        self.t_max_q7.d.next = self.t_max_d2.q.val();
-        self.empty_q7.d.next = self.empty_d2.q.val();
+        self.t_min_q7.d.next = self.t_min_d.q.val();
+        self.t_max_q7.d.next = self.t_max_d.q.val();
+        self.empty_q7.d.next = self.empty_d.q.val();
         self.valid_q7.d.next = self.mul_e[0].valid_out.val();
         self.tag_q7.d.next = self.mul_e[0].tag_out.val();
 

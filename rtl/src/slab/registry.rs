@@ -89,6 +89,23 @@ pub const SLAB_FLOAT_FORMATS: [golden::format::float::FloatFormat; 5] = [
     golden::format::float::FloatFormat { e: 6, m: 5 },
 ];
 
+/// The 13-clock float slab tester in binary32 ([`super::float::SLAB_FLOAT_CUTS_DEEP`]: adders cut after the
+/// alignment and after the normalisation, multipliers after the raw and after the normalised product).
+pub type SlabFloatE8M23P13 =
+    super::float::SlabFloat<8, 23, 32, { super::float::SLAB_FLOAT_CUTS_DEEP }>;
+/// The 13-clock float slab tester in E8M15.
+pub type SlabFloatE8M15P13 =
+    super::float::SlabFloat<8, 15, 24, { super::float::SLAB_FLOAT_CUTS_DEEP }>;
+/// The 13-clock float slab tester in bfloat16.
+pub type SlabFloatE8M7P13 =
+    super::float::SlabFloat<8, 7, 16, { super::float::SLAB_FLOAT_CUTS_DEEP }>;
+/// The 13-clock float slab tester in binary16.
+pub type SlabFloatE5M10P13 =
+    super::float::SlabFloat<5, 10, 16, { super::float::SLAB_FLOAT_CUTS_DEEP }>;
+/// The 13-clock float slab tester in E6M5.
+pub type SlabFloatE6M5P13 =
+    super::float::SlabFloat<6, 5, 12, { super::float::SLAB_FLOAT_CUTS_DEEP }>;
+
 /// Runs `$body` with `$t` bound to the `SlabFloat` type of a float format, or returns an error for a
 /// format without an instantiated block.
 #[macro_export]

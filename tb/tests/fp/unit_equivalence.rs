@@ -78,6 +78,60 @@ fn e4m3_exhaustive() {
     }
 }
 
+/// Every configuration of the optional cut points (`rtl::fp::add::cut`, `rtl::fp::mul::cut`), in every
+/// rounding mode, on binary16 and binary32: the same results, each at its own latency (checked by
+/// `run_checked`).
+#[test]
+fn every_cut_configuration_matches_the_model() {
+    fn one<const E: usize, const M: usize, const N: usize>(n: usize) {
+        let f = FloatFormat::new(E as u32, M as u32).unwrap();
+        for (k, mode) in Rounding::ALL.into_iter().enumerate() {
+            for cuts in 1..=rtl::fp::add::cut::ALL {
+                let mut dut = FpAddRtl::<E, M, N>::with_cuts(mode, cuts);
+                let seed = 20 + (k * 4 + cuts) as u64;
+                run_checked(&mut dut, pairs(&f, n, seed), |&(a, b)| f.add(a, b, mode))
+                    .unwrap_or_else(|e| panic!("{} add {mode:?} cuts {cuts:#x}: {e}", f.name()));
+            }
+            for cuts in 1..=rtl::fp::mul::cut::ALL {
+                let mut dut = FpMulRtl::<E, M, N>::with_cuts(mode, cuts);
+                let seed = 40 + (k * 4 + cuts) as u64;
+                run_checked(&mut dut, pairs(&f, n, seed), |&(a, b)| f.mul(a, b, mode))
+                    .unwrap_or_else(|e| panic!("{} mul {mode:?} cuts {cuts:#x}: {e}", f.name()));
+            }
+        }
+    }
+    one::<5, 10, 16>(20_000);
+    one::<8, 23, 32>(20_000);
+}
+
+/// The latency check can fail: a unit with a cut point run as if it had none is caught.
+#[test]
+fn a_wrong_latency_is_caught() {
+    let f = FloatFormat::FP16;
+    let mode = Rounding::NearestEven;
+    let mut add = FpAddRtl::<5, 10, 16>::with_cuts(mode, rtl::fp::add::cut::NORM);
+    let r = tb::dut::run_checked(
+        &mut Claimed(&mut add, rtl::fp::add::FP_ADD_LATENCY),
+        pairs(&f, 200, 3),
+        |&(a, b)| f.add(a, b, mode),
+    );
+    assert!(r.is_err(), "a 4-clock adder passed as a 3-clock one");
+}
+
+/// A unit that claims another latency than its own.
+struct Claimed<'a, D>(&'a mut D, usize);
+
+impl<D: tb::dut::PipelinedDut> tb::dut::PipelinedDut for Claimed<'_, D> {
+    type In = D::In;
+    type Out = D::Out;
+    fn latency(&self) -> usize {
+        self.1
+    }
+    fn step(&mut self, input: Option<(u16, &D::In)>) -> Option<(u16, D::Out)> {
+        self.0.step(input)
+    }
+}
+
 /// The check can fail: a unit rounding toward -inf disagrees with the round-to-nearest model.
 #[test]
 fn a_wrong_mode_is_caught() {

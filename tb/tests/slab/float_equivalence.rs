@@ -12,10 +12,14 @@ use tb::slab::strategies::float_burst;
 const CASES: u32 = 3_000;
 
 fn equivalence<S: SlabFloatIo>(name: &str) {
+    equivalence_n::<S>(name, CASES);
+}
+
+fn equivalence_n<S: SlabFloatIo>(name: &str, cases: u32) {
     let f = S::format();
     shrinking_pipelined(
         name,
-        CASES,
+        cases,
         float_burst(f),
         |burst| burst.clone(),
         |vcd| match vcd {
@@ -45,4 +49,33 @@ fn slab_float_e5m10_matches_model() {
 #[test]
 fn slab_float_e6m5_matches_model() {
     equivalence::<rtl::SlabFloatE6M5>("slab_float_e6m5");
+}
+#[test]
+fn slab_float_e8m23_13_clocks_matches_model() {
+    equivalence::<rtl::SlabFloatE8M23P13>("slab_float_e8m23_p13");
+}
+#[test]
+fn slab_float_e5m10_13_clocks_matches_model() {
+    equivalence::<rtl::SlabFloatE5M10P13>("slab_float_e5m10_p13");
+}
+
+/// Configurations of the optional cut points (`rtl::slab::float::cut`) on E6M5 — each cut alone, the
+/// adders' pair, the multipliers' pair and two mixed — latencies 10 to 11 (the 13-clock tester with all
+/// four is tested above): the side data's waits follow the units' latencies in each.
+#[test]
+fn every_cut_configuration_matches_model_e6m5() {
+    use rtl::slab::float::{cut, slab_float_latency, SlabFloat};
+    macro_rules! each {
+        ($($c:literal),*) => {$(
+            assert_eq!(<SlabFloat<6, 5, 12, $c> as rtl::SlabIo>::LATENCY, slab_float_latency($c));
+            equivalence_n::<SlabFloat<6, 5, 12, $c>>(concat!("slab_float_e6m5_c", $c), 400);
+        )*};
+    }
+    each!(1, 2, 4, 8, 3, 12, 6, 9);
+    const _: () = assert!(cut::ALL == 15, "four cut points");
+    let lat: Vec<usize> = [0, 1, 2, 4, 8, 3, 12, 6, 9, cut::ALL]
+        .into_iter()
+        .map(slab_float_latency)
+        .collect();
+    assert_eq!(lat, [9, 10, 10, 10, 10, 11, 11, 11, 11, 13]);
 }

@@ -1,11 +1,11 @@
 //! The float slab testers' exported Verilog: lint-clean under `verilator --lint-only -Wall`, accepted by
 //! Icarus, and bit-exact in Verilator with the rust-hdl simulation (every cycle) and the model over 100,000
-//! vectors per format.
+//! vectors per format, and the same for the 13-clock tester in binary16 and binary32.
 
 use golden::format::float::FloatFormat;
 use golden::slab::float::{quantize_box, quantize_ray};
 use golden::slab::gen::GenKind;
-use rtl::export::{slab_float_module, slab_float_verilog};
+use rtl::export::{slab_float_module_cuts, slab_float_verilog_of};
 use rtl::slab::float::SlabFloatIo;
 use tb::slab::ports::xsim;
 
@@ -13,8 +13,8 @@ const VECTORS: u64 = 100_000;
 
 fn check<S: SlabFloatIo>(seed: u64) {
     let f = S::format();
-    let module = slab_float_module(&f);
-    let v = slab_float_verilog(&f).unwrap();
+    let module = slab_float_module_cuts(&f, S::CUTS);
+    let v = slab_float_verilog_of::<S>();
     let path = tb::verilog_tools::write(&v, &module);
     tb::verilog_tools::lint(&path).unwrap_or_else(|e| panic!("{e}"));
     tb::verilog_tools::icarus(&path).unwrap_or_else(|e| panic!("{e}"));
@@ -63,6 +63,16 @@ per_format! {
     e8m7: rtl::SlabFloatE8M7 = 3,
     e5m10: rtl::SlabFloatE5M10 = 4,
     e6m5: rtl::SlabFloatE6M5 = 5,
+}
+
+#[test]
+fn e5m10_13_clocks() {
+    check::<rtl::SlabFloatE5M10P13>(6);
+}
+
+#[test]
+fn e8m23_13_clocks() {
+    check::<rtl::SlabFloatE8M23P13>(7);
 }
 
 /// The tests above run exactly the formats the registry instantiates (`rtl::SLAB_FLOAT_FORMATS`), each

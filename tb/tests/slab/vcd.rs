@@ -51,32 +51,39 @@ fn valid_latency<S: rtl::slab::fix::SlabFixIo>(name: &str, latency: usize) {
         .unwrap_or_else(|e| panic!("{e}"));
 }
 
-/// The same for the float tester (binary16): `valid_out` rises SLAB_FLOAT_LATENCY edges after `valid_in`.
-#[test]
-fn float_valid_leaves_latency_clocks_after_it_enters() {
+/// The same for the float tester (binary16): `valid_out` rises `S::LATENCY` edges after `valid_in`.
+fn float_valid_latency<S: rtl::slab::float::SlabFloatIo>(file: &str, latency: usize) {
     use golden::format::float::FloatFormat;
     use golden::slab::float::{quantize_box, quantize_ray, slab_float};
-    let f = FloatFormat::FP16;
-    let path = tb::out_dir()
-        .join("vcd")
-        .join("slab_float_e5m10_latency.vcd");
+    let f = S::format();
+    assert_eq!(f, FloatFormat::FP16);
+    let path = tb::out_dir().join("vcd").join(file);
     let (lo, hi) = tb::campaign::campaign_bounds();
     let tests: Vec<_> = golden::slab::gen::SlabGen::new(GenKind::Mixed, lo, hi, 1.0 / 64.0, 12)
         .take(4)
         .map(|(r, b)| Some((quantize_ray(&f, &r).unwrap(), quantize_box(&f, &b).unwrap())))
         .collect();
     let mut stream = vec![tests[0]];
-    stream.extend(std::iter::repeat_n(None, 12));
+    stream.extend(std::iter::repeat_n(None, 16));
     stream.extend(tests[1..].iter().cloned());
     {
-        let mut dut =
-            tb::rtl_sim::SlabFloatRtl::<rtl::SlabFloatE5M10>::float_with_vcd(&path).unwrap();
+        let mut dut = tb::rtl_sim::SlabFloatRtl::<S>::float_with_vcd(&path).unwrap();
         let n = run_checked(&mut dut, stream, |v| slab_float(&f, &v.0, &v.1))
             .unwrap_or_else(|e| panic!("{e}"));
         assert_eq!(n, 4);
     }
     let trace = read_trace(&path, &["valid_in", "valid_out"]).unwrap();
     trace
-        .check_valid_latency(2, rtl::SLAB_FLOAT_LATENCY)
+        .check_valid_latency(2, latency)
         .unwrap_or_else(|e| panic!("{e}"));
+}
+
+#[test]
+fn float_valid_leaves_latency_clocks_after_it_enters() {
+    float_valid_latency::<rtl::SlabFloatE5M10>("slab_float_e5m10_latency.vcd", 9);
+}
+
+#[test]
+fn float_13_clocks_valid_leaves_13_clocks_after_it_enters() {
+    float_valid_latency::<rtl::SlabFloatE5M10P13>("slab_float_e5m10_p13_latency.vcd", 13);
 }
