@@ -69,6 +69,11 @@ pub struct Args {
     /// default: docs/sweep/area.csv of this source tree, when there is one.
     #[arg(long)]
     pub area: Option<PathBuf>,
+    /// Post-route timing table (the CSV `scripts/timing` writes); default: docs/timing/timing.csv of this
+    /// source tree, when there is one. Gives each configuration whose modules it names a clock (the
+    /// slowest module's Fmax) and rays per second.
+    #[arg(long)]
+    pub timing: Option<PathBuf>,
 }
 
 impl Args {
@@ -87,6 +92,7 @@ impl Args {
             offset: 1e-5,
             seed: 1,
             area: None,
+            timing: None,
         }
     }
 
@@ -170,12 +176,97 @@ pub fn load_area(given: Option<&Path>) -> Result<HashMap<String, Area>, String> 
         }
         return read_area(p);
     }
-    let here = PathBuf::from("docs/sweep/area.csv");
-    let src = Path::new(env!("CARGO_MANIFEST_DIR")).join("../docs/sweep/area.csv");
-    match [here, src].into_iter().find(|p| p.exists()) {
+    match default_table("docs/sweep/area.csv") {
         Some(p) => read_area(&p),
         None => Ok(HashMap::new()),
     }
+}
+
+/// A table of this project found by its path in the source tree: from the current folder, or from the
+/// source tree this binary was built from (so `cargo run` from any folder finds it).
+fn default_table(rel: &str) -> Option<PathBuf> {
+    let here = PathBuf::from(rel);
+    let src = Path::new(env!("CARGO_MANIFEST_DIR")).join("..").join(rel);
+    [here, src].into_iter().find(|p| p.exists())
+}
+
+/// One module's post-route figures on ECP5 (a row of `docs/timing/timing.csv`).
+#[derive(Clone, Debug, PartialEq)]
+pub struct Timing {
+    pub fmax_mhz: f64,
+    pub lut4: u64,
+}
+
+/// The timing table: the file given (which must exist), or by default `docs/timing/timing.csv` (found
+/// as the area table is); an empty table when neither exists.
+pub fn load_timing(given: Option<&Path>) -> Result<HashMap<String, Timing>, String> {
+    if let Some(p) = given {
+        if !p.exists() {
+            return Err(format!("--timing {}: no such file", p.display()));
+        }
+        return read_timing(p);
+    }
+    match default_table("docs/timing/timing.csv") {
+        Some(p) => read_timing(&p),
+        None => Ok(HashMap::new()),
+    }
+}
+
+/// Reads a timing CSV (`scripts/timing`'s `timing.csv`): a header line with at least the columns
+/// `module`, `lut4` and `fmax_mhz` (others are carried by the file and ignored here), then one row per
+/// module; a later row of a module replaces an earlier one. A missing column, a row with the wrong
+/// number of cells, a LUT4 count that is not a count or an Fmax that is not a positive finite number is
+/// an error naming the file, the line and the column.
+pub fn read_timing(path: &Path) -> Result<HashMap<String, Timing>, String> {
+    let text = std::fs::read_to_string(path)
+        .map_err(|e| format!("{}: cannot read the timing table: {e}", path.display()))?;
+    let mut lines = golden::text::strip_bom(&text)
+        .lines()
+        .enumerate()
+        .filter(|(_, l)| !l.trim().is_empty());
+    let Some((_, head)) = lines.next() else {
+        return Err(format!(
+            "{}: empty timing table (no header line)",
+            path.display()
+        ));
+    };
+    let cols: Vec<&str> = head.split(',').map(str::trim).collect();
+    let col = |name: &str| {
+        cols.iter().position(|c| *c == name).ok_or_else(|| {
+            format!(
+                "{}:1: column `{name}` missing from the header",
+                path.display()
+            )
+        })
+    };
+    let (im, il, ifm) = (col("module")?, col("lut4")?, col("fmax_mhz")?);
+    let mut t = HashMap::new();
+    for (n, line) in lines {
+        let bad = |what: String| format!("{}:{}: {what}", path.display(), n + 1);
+        let f: Vec<&str> = line.split(',').map(str::trim).collect();
+        if f.len() != cols.len() {
+            return Err(bad(format!(
+                "{} cells, but the header has {}",
+                f.len(),
+                cols.len()
+            )));
+        }
+        let lut4 = f[il]
+            .parse::<u64>()
+            .map_err(|_| bad(format!("column `lut4`: `{}` is not a count", f[il])))?;
+        let fmax_mhz = f[ifm]
+            .parse::<f64>()
+            .ok()
+            .filter(|v| v.is_finite() && *v > 0.0)
+            .ok_or_else(|| {
+                bad(format!(
+                    "column `fmax_mhz`: `{}` is not a positive frequency in MHz",
+                    f[ifm]
+                ))
+            })?;
+        t.insert(f[im].to_string(), Timing { fmax_mhz, lut4 });
+    }
+    Ok(t)
 }
 
 /// The columns of a synthesis CSV (`scripts/synth` writes them all); the first six are required.
@@ -333,9 +424,25 @@ pub struct Rec {
     pub exact: SceneStats,
     pub modules: Vec<String>,
     pub area: Option<Area>,
+    /// The modules' post-route figures together: the slowest one's Fmax, their LUT4s summed; `None`
+    /// unless the timing table has every module.
+    pub timing: Option<Timing>,
 }
 
 impl Rec {
+    /// Rays per second at the modules' clock (the slowest one's Fmax): Fmax over tester cycles per ray,
+    /// each unit testing one node a clock and the pair's cycles counted beside the single-ray tester's, as
+    /// if one unit ran at a time (`SceneStats::cycles_per_ray`).
+    pub fn rays_per_s(&self) -> Option<f64> {
+        let t = self.timing.as_ref()?;
+        Some(t.fmax_mhz * 1e6 / self.st.cycles_per_ray())
+    }
+
+    /// Rays per second per 1,000 ECP5 LUT4s of the configuration's modules.
+    pub fn rays_per_s_per_klut4(&self) -> Option<f64> {
+        Some(self.rays_per_s()? / (self.timing.as_ref()?.lut4 as f64 / 1000.0))
+    }
+
     /// Tester cycles beyond the exact machine's, as a fraction of its.
     pub fn extra_cycles(&self) -> f64 {
         let c = |s: &SceneStats| (s.box_tests + s.pair_tests) as f64;
@@ -541,6 +648,7 @@ pub fn measure(a: &Args) -> Result<(Vec<Rec>, HashMap<String, f64>), String> {
         return Err("--width and --height must be at least 1".into());
     }
     let area = load_area(a.area.as_deref())?;
+    let timing = load_timing(a.timing.as_deref())?;
     let mut scenes: Vec<String> = vec![];
     for s in list(&a.scenes, |s| Ok(s.to_string()))? {
         if scenes.contains(&s) {
@@ -599,6 +707,14 @@ pub fn measure(a: &Args) -> Result<(Vec<Rec>, HashMap<String, f64>), String> {
                         .map(|m| area.get(m).cloned())
                         .collect::<Option<Vec<_>>>()
                         .map(|v| v.iter().fold(Area::default(), |acc, x| acc.plus(x)));
+                    let tm = mods
+                        .iter()
+                        .map(|m| timing.get(m))
+                        .collect::<Option<Vec<_>>>()
+                        .map(|v| Timing {
+                            fmax_mhz: v.iter().map(|t| t.fmax_mhz).fold(f64::INFINITY, f64::min),
+                            lut4: v.iter().map(|t| t.lut4).sum(),
+                        });
                     done += 1;
                     eprintln!(
                         "[{done}/{total}] {name} {} K{k} B{b}: {:.1} s",
@@ -614,6 +730,7 @@ pub fn measure(a: &Args) -> Result<(Vec<Rec>, HashMap<String, f64>), String> {
                         exact,
                         modules: mods,
                         area,
+                        timing: tm,
                     });
                 }
             }
@@ -638,13 +755,13 @@ pub fn pareto(pts: &[(f64, f64)]) -> Vec<usize> {
 
 /// CSV header of `sweep.csv`. `plane_tests`: plane evaluations (each single-ray test of a node runs its
 /// `K` plane units; the pair tests boxes only).
-pub const CSV_HEADER: &str = "scene,datapath,format,coord_bits,k,bundle,rays,box_tests,plane_tests,pair_tests,pair_ideal,pair_decided,cycles_per_ray,exact_cycles_per_ray,extra_cycles,tri_tests,exact_tri_tests,extra_tri_tests,false_box_hits,true_box_misses,false_hit_rate,plane_culls,mean_looseness,looseness_of_diagonal,hits,modules,latency,ice40_lut4,ice40_depth,xilinx_lut,xilinx_dsp,pareto_accuracy,pareto_speed";
+pub const CSV_HEADER: &str = "scene,datapath,format,coord_bits,k,bundle,rays,box_tests,plane_tests,pair_tests,pair_ideal,pair_decided,cycles_per_ray,exact_cycles_per_ray,extra_cycles,tri_tests,exact_tri_tests,extra_tri_tests,false_box_hits,true_box_misses,false_hit_rate,plane_culls,mean_looseness,looseness_of_diagonal,hits,modules,latency,ice40_lut4,ice40_depth,xilinx_lut,xilinx_dsp,pareto_accuracy,pareto_speed,ecp5_fmax_mhz,ecp5_lut4,rays_per_s,rays_per_s_per_klut4,pareto_rays_per_area";
 
 /// Writes `sweep.csv`, `sweep.md` and the charts under `out`; returns the markdown.
 pub fn report(recs: &[Rec], out: &Path, diag: &HashMap<String, f64>) -> Result<String, String> {
     std::fs::create_dir_all(out).map_err(|e| format!("{}: {e}", out.display()))?;
     let mut csv = format!("{CSV_HEADER}\n");
-    let mut md = String::from("| scene | format | K | B | cycles/ray | extra cycles vs exact | extra triangle tests | false-hit rate | looseness (of diagonal) | iCE40 LUT4 | 7-series LUT + DSP | latency | front |\n|---|---|---|---|---|---|---|---|---|---|---|---|---|\n");
+    let mut md = String::from("| scene | format | K | B | cycles/ray | extra cycles vs exact | extra triangle tests | false-hit rate | looseness (of diagonal) | iCE40 LUT4 | 7-series LUT + DSP | latency | ECP5 MHz | Mrays/s | Mrays/s per 1k ECP5 LUT4 | front |\n|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|\n");
     let scenes: Vec<&String> = {
         let mut v: Vec<&String> = recs.iter().map(|r| &r.scene).collect();
         v.dedup();
@@ -664,13 +781,26 @@ pub fn report(recs: &[Rec], out: &Path, diag: &HashMap<String, f64>) -> Result<S
             .collect();
         let fa: Vec<usize> = pareto(&acc).into_iter().map(|j| with_area[j]).collect();
         let fs: Vec<usize> = pareto(&spd).into_iter().map(|j| with_area[j]).collect();
+        // Accuracy against rays per second per area: more rays per LUT4 is better, so the front is of
+        // (its reciprocal, extra cycles).
+        let with_time: Vec<usize> = (0..rs.len())
+            .filter(|&i| rs[i].rays_per_s_per_klut4().is_some())
+            .collect();
+        let per_area = |i: usize| rs[i].rays_per_s_per_klut4().unwrap_or(0.0);
+        let tp: Vec<(f64, f64)> = with_time
+            .iter()
+            .map(|&i| (1.0 / per_area(i), rs[i].extra_cycles()))
+            .collect();
+        let ft: Vec<usize> = pareto(&tp).into_iter().map(|j| with_time[j]).collect();
         let d = diag.get(scene).copied().unwrap_or(1.0);
         for (i, r) in rs.iter().enumerate() {
             let a = r.area.clone();
             let cell = |f: &dyn Fn(&Area) -> String| a.as_ref().map_or(String::new(), f);
+            let opt = |v: Option<f64>, f: &dyn Fn(f64) -> String| v.map_or(String::new(), f);
+            let tm = r.timing.as_ref();
             let _ = writeln!(
                 csv,
-                "{},{},{},{},{},{},{},{},{},{},{},{},{:.4},{:.4},{:.6},{},{},{:.6},{},{},{:.6},{},{:.6e},{:.6e},{},{},{},{},{},{},{},{},{}",
+                "{},{},{},{},{},{},{},{},{},{},{},{},{:.4},{:.4},{:.6},{},{},{:.6},{},{},{:.6},{},{:.6e},{:.6e},{},{},{},{},{},{},{},{},{},{},{},{},{},{}",
                 r.scene,
                 r.format.datapath(),
                 r.format.name(),
@@ -704,16 +834,25 @@ pub fn report(recs: &[Rec], out: &Path, diag: &HashMap<String, f64>) -> Result<S
                 cell(&|a| a.xilinx_dsp.to_string()),
                 fa.contains(&i),
                 fs.contains(&i),
+                opt(tm.map(|t| t.fmax_mhz), &|v| format!("{v:.1}")),
+                tm.map_or(String::new(), |t| t.lut4.to_string()),
+                opt(r.rays_per_s(), &|v| format!("{v:.4e}")),
+                opt(r.rays_per_s_per_klut4(), &|v| format!("{v:.4e}")),
+                ft.contains(&i),
             );
-            let front = match (fa.contains(&i), fs.contains(&i)) {
-                (true, true) => "accuracy, speed",
-                (true, false) => "accuracy",
-                (false, true) => "speed",
-                _ => "",
-            };
+            let front = [
+                (fa.contains(&i), "accuracy"),
+                (fs.contains(&i), "speed"),
+                (ft.contains(&i), "rays/s per area"),
+            ]
+            .iter()
+            .filter(|(on, _)| *on)
+            .map(|(_, n)| *n)
+            .collect::<Vec<_>>()
+            .join(", ");
             let _ = writeln!(
                 md,
-                "| {} | {} | {} | {} | {:.2} | {:+.2}% | {:+.2}% | {:.3}% | {:.2e} | {} | {} | {} | {front} |",
+                "| {} | {} | {} | {} | {:.2} | {:+.2}% | {:+.2}% | {:.3}% | {:.2e} | {} | {} | {} | {} | {} | {} | {front} |",
                 r.scene,
                 r.format.name(),
                 r.k,
@@ -726,6 +865,9 @@ pub fn report(recs: &[Rec], out: &Path, diag: &HashMap<String, f64>) -> Result<S
                 cell(&|a| a.ice40_lut4.to_string()),
                 cell(&|a| format!("{} + {}", a.xilinx_lut, a.xilinx_dsp)),
                 cell(&|a| a.latency.to_string()),
+                opt(tm.map(|t| t.fmax_mhz), &|v| format!("{v:.1}")),
+                opt(r.rays_per_s(), &|v| format!("{:.2}", v / 1e6)),
+                opt(r.rays_per_s_per_klut4(), &|v| format!("{:.2}", v / 1e6)),
             );
         }
         let pts = |f: &dyn Fn(&Rec) -> f64, front: &[usize]| -> Vec<Point> {
@@ -756,6 +898,25 @@ pub fn report(recs: &[Rec], out: &Path, diag: &HashMap<String, f64>) -> Result<S
                 &pts(&|r| r.st.cycles_per_ray(), &fs),
             )?;
         }
+        if !with_time.is_empty() {
+            let tpts: Vec<Point> = with_time
+                .iter()
+                .map(|&i| Point {
+                    x: per_area(i),
+                    y: 100.0 * rs[i].extra_cycles(),
+                    label: rs[i].label(),
+                    group: format!("{} K{}", rs[i].format.datapath(), rs[i].k),
+                    front: ft.contains(&i),
+                })
+                .collect();
+            scatter_chart(
+                &out.join(format!("sweep_{}_rays_per_area.svg", file_stem(scene))),
+                &format!("{scene}: extra tester cycles against rays/s per 1,000 ECP5 LUT4 (Pareto front joined)"),
+                "rays per second per 1,000 ECP5 LUT4 (one tester at its post-route Fmax, log)",
+                "extra tester cycles vs exact (%)",
+                &tpts,
+            )?;
+        }
     }
     crate::out_file::write_file(&out.join("sweep.csv"), &csv)?;
     let missing: Vec<String> = {
@@ -774,6 +935,24 @@ pub fn report(recs: &[Rec], out: &Path, diag: &HashMap<String, f64>) -> Result<S
             "\nNo synthesis figures for (left out of the charts and fronts): {}. Synthesise them with \
              `scripts/synth <module>` and add the rows to the area table.",
             missing.join(", ")
+        );
+    }
+    let untimed: Vec<String> = {
+        let mut m: Vec<String> = recs
+            .iter()
+            .filter(|r| r.timing.is_none())
+            .map(|r| r.modules.join("+"))
+            .collect();
+        m.sort();
+        m.dedup();
+        m
+    };
+    if !untimed.is_empty() {
+        let _ = writeln!(
+            md,
+            "\nNo post-route timing for (no rays per second): {}. Place and route them with \
+             `scripts/timing <module>` and add the rows to the timing table.",
+            untimed.join(", ")
         );
     }
     crate::out_file::write_file(&out.join("sweep.md"), &md)?;
@@ -862,6 +1041,56 @@ mod tests {
         ] {
             std::fs::write(&p, &text).unwrap();
             let e = read_area(&p).unwrap_err();
+            assert!(e.contains(want), "{text}: {e}");
+        }
+        std::fs::remove_dir_all(&dir).unwrap();
+    }
+
+    #[test]
+    fn timing_table_rejects_bad_rows_and_later_rows_win() {
+        let dir = std::env::temp_dir().join(format!("rtu-timing-{}", std::process::id()));
+        std::fs::create_dir_all(&dir).unwrap();
+        let p = dir.join("t.csv");
+        let h = "module,latency,device,lut4,ff,mult18,fmax_mhz,crit_from,crit_to,seed";
+        std::fs::write(
+            &p,
+            format!("\u{feff}{h}\nm,4,D,453,422,6,97.8,a,b,1\n\nm,6,D,493,766,6,145.6,a,b,1\nq,9,D,10,1,0,5,a,b,1\n"),
+        )
+        .unwrap();
+        let t = read_timing(&p).unwrap();
+        assert_eq!(
+            t["m"],
+            Timing {
+                fmax_mhz: 145.6,
+                lut4: 493
+            }
+        );
+        assert_eq!(t["q"].fmax_mhz, 5.0);
+        for (text, want) in [
+            (String::new(), "t.csv: empty timing table"),
+            (
+                "module,lut4\n".to_string(),
+                "t.csv:1: column `fmax_mhz` missing",
+            ),
+            (
+                format!("{h}\nm,4,D,x,422,6,97.8,a,b,1\n"),
+                "t.csv:2: column `lut4`: `x` is not a count",
+            ),
+            (
+                format!("{h}\nm,4,D,1,422,6,NaN,a,b,1\n"),
+                "t.csv:2: column `fmax_mhz`: `NaN` is not a positive frequency",
+            ),
+            (
+                format!("{h}\nm,4,D,1,422,6,0,a,b,1\n"),
+                "t.csv:2: column `fmax_mhz`: `0` is not a positive frequency",
+            ),
+            (
+                format!("{h}\n\nm,4,D,1,422,6,9,a,b\n"),
+                "t.csv:3: 9 cells, but the header has 10",
+            ),
+        ] {
+            std::fs::write(&p, &text).unwrap();
+            let e = read_timing(&p).unwrap_err();
             assert!(e.contains(want), "{text}: {e}");
         }
         std::fs::remove_dir_all(&dir).unwrap();

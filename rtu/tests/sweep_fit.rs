@@ -50,11 +50,20 @@ fn sweep_measures_every_configuration_and_marks_the_front() {
         ),
     )
     .unwrap();
+    // A made-up timing table with b8's slab tester only: every other configuration has no rays/s.
+    let timing = dir.join("timing.csv");
+    std::fs::write(
+        &timing,
+        "module,latency,device,lut4,ff,mult18,fmax_mhz,crit_from,crit_to,seed\nslab_fix_g8_i12f8_t14f4,4,D,400,1,6,80.0,a,b,1\n",
+    )
+    .unwrap();
     let out = dir.join("out");
     let o = rtu(&[
         "--out",
         out.to_str().unwrap(),
         "sweep",
+        "--timing",
+        timing.to_str().unwrap(),
         "--scenes",
         "soup",
         "--width",
@@ -110,7 +119,30 @@ fn sweep_measures_every_configuration_and_marks_the_front() {
     assert_eq!(fp16["pareto_accuracy"] == "true", acc(fp16) < acc(b8));
     assert_eq!(find("b8", "1", "1")["pareto_accuracy"], "false");
     assert_eq!(find("b8", "1", "1")["ice40_lut4"], "");
-    for chart in ["sweep_soup_accuracy.svg", "sweep_soup_speed.svg"] {
+    // Rays per second: the module's Fmax over tester cycles per ray, and per 1,000 of its LUT4s.
+    let f = |x: &HashMap<String, String>, k: &str| x[k].parse::<f64>().unwrap();
+    let rps = 80e6 / f(b8, "cycles_per_ray");
+    assert!((f(b8, "rays_per_s") / rps - 1.0).abs() < 1e-3, "{b8:?}");
+    assert!((f(b8, "rays_per_s_per_klut4") / (rps / 0.4) - 1.0).abs() < 1e-3);
+    assert_eq!(b8["ecp5_fmax_mhz"], "80.0");
+    assert_eq!(
+        b8["pareto_rays_per_area"], "true",
+        "the only timed point is its own front"
+    );
+    for (f, k, b) in [("fp16", "0", "1"), ("b8", "1", "1"), ("b8", "0", "4")] {
+        assert_eq!(
+            find(f, k, b)["rays_per_s"],
+            "",
+            "{f} K{k} B{b} has no timing row"
+        );
+    }
+    let md = std::fs::read_to_string(out.join("sweep.md")).unwrap();
+    assert!(md.contains("No post-route timing for") && md.contains("slab_float_e5m10"));
+    for chart in [
+        "sweep_soup_accuracy.svg",
+        "sweep_soup_speed.svg",
+        "sweep_soup_rays_per_area.svg",
+    ] {
         let svg = std::fs::read_to_string(out.join(chart)).unwrap();
         assert!(svg.contains("b8 K0 B1"), "{chart} labels the front");
     }
@@ -216,6 +248,10 @@ fn bad_options_and_scene_files_are_named_errors() {
         (
             vec!["sweep", "--area", "/nonexistent/area.csv"],
             "--area /nonexistent/area.csv",
+        ),
+        (
+            vec!["sweep", "--timing", "/nonexistent/timing.csv"],
+            "--timing /nonexistent/timing.csv: no such file",
         ),
     ] {
         let mut a = vec!["--out", o];
