@@ -170,16 +170,24 @@ impl Area {
 /// in the source tree this binary was built from (so `cargo run` from any folder finds it); an empty
 /// table when neither exists.
 pub fn load_area(given: Option<&Path>) -> Result<HashMap<String, Area>, String> {
+    load_table(given, "--area", "docs/sweep/area.csv", read_area)
+}
+
+/// A per-module table: the file given to `option` (which must exist) read by `read`, or by default the
+/// project's table at `rel` ([`default_table`]); an empty table when there is none.
+fn load_table<T>(
+    given: Option<&Path>,
+    option: &str,
+    rel: &str,
+    read: fn(&Path) -> Result<HashMap<String, T>, String>,
+) -> Result<HashMap<String, T>, String> {
     if let Some(p) = given {
         if !p.exists() {
-            return Err(format!("--area {}: no such file", p.display()));
+            return Err(format!("{option} {}: no such file", p.display()));
         }
-        return read_area(p);
+        return read(p);
     }
-    match default_table("docs/sweep/area.csv") {
-        Some(p) => read_area(&p),
-        None => Ok(HashMap::new()),
-    }
+    default_table(rel).map_or_else(|| Ok(HashMap::new()), |p| read(&p))
 }
 
 /// A table of this project found by its path in the source tree: from the current folder, or from the
@@ -200,16 +208,7 @@ pub struct Timing {
 /// The timing table: the file given (which must exist), or by default `docs/timing/timing.csv` (found
 /// as the area table is); an empty table when neither exists.
 pub fn load_timing(given: Option<&Path>) -> Result<HashMap<String, Timing>, String> {
-    if let Some(p) = given {
-        if !p.exists() {
-            return Err(format!("--timing {}: no such file", p.display()));
-        }
-        return read_timing(p);
-    }
-    match default_table("docs/timing/timing.csv") {
-        Some(p) => read_timing(&p),
-        None => Ok(HashMap::new()),
-    }
+    load_table(given, "--timing", "docs/timing/timing.csv", read_timing)
 }
 
 /// Reads a timing CSV (`scripts/timing`'s `timing.csv`): a header line with at least the columns
@@ -919,16 +918,7 @@ pub fn report(recs: &[Rec], out: &Path, diag: &HashMap<String, f64>) -> Result<S
         }
     }
     crate::out_file::write_file(&out.join("sweep.csv"), &csv)?;
-    let missing: Vec<String> = {
-        let mut m: Vec<String> = recs
-            .iter()
-            .filter(|r| r.area.is_none())
-            .map(|r| r.modules.join("+"))
-            .collect();
-        m.sort();
-        m.dedup();
-        m
-    };
+    let missing = modules_without(recs, |r| r.area.is_none());
     if !missing.is_empty() {
         let _ = writeln!(
             md,
@@ -937,16 +927,7 @@ pub fn report(recs: &[Rec], out: &Path, diag: &HashMap<String, f64>) -> Result<S
             missing.join(", ")
         );
     }
-    let untimed: Vec<String> = {
-        let mut m: Vec<String> = recs
-            .iter()
-            .filter(|r| r.timing.is_none())
-            .map(|r| r.modules.join("+"))
-            .collect();
-        m.sort();
-        m.dedup();
-        m
-    };
+    let untimed = modules_without(recs, |r| r.timing.is_none());
     if !untimed.is_empty() {
         let _ = writeln!(
             md,
@@ -957,6 +938,18 @@ pub fn report(recs: &[Rec], out: &Path, diag: &HashMap<String, f64>) -> Result<S
     }
     crate::out_file::write_file(&out.join("sweep.md"), &md)?;
     Ok(md)
+}
+
+/// The module sets (`a+b`) of the records `lacks` picks, sorted, each once.
+fn modules_without(recs: &[Rec], lacks: impl Fn(&Rec) -> bool) -> Vec<String> {
+    let mut m: Vec<String> = recs
+        .iter()
+        .filter(|r| lacks(r))
+        .map(|r| r.modules.join("+"))
+        .collect();
+    m.sort();
+    m.dedup();
+    m
 }
 
 /// A file-name-safe form of a scene name (an OBJ path's stem).
