@@ -308,3 +308,48 @@ pub fn fp_mul_verilog<const E: usize, const M: usize, const N: usize>(
     let mut uut = crate::fp::mul::FpMul::<E, M, N>::new(mode);
     verilog_named(&mut uut, &fp_unit_module("mul", &f, mode))
 }
+
+/// Verilog of the float comparator `FpCmp<N>` of format `f` (combinational `lt`, `le`), module
+/// `fp_cmp_<format>`.
+pub fn fp_cmp_verilog<const N: usize>(f: &golden::format::float::FloatFormat) -> String {
+    assert_eq!(f.width() as usize, N, "FpCmp<{N}> for {}", f.name());
+    let mut uut = crate::fp::cmp::FpCmp::<N>::new(f.inf(false) as u64);
+    verilog_named(&mut uut, &format!("fp_cmp_{}", f.name()))
+}
+
+/// Verilog of the registered float minimum and maximum `FpMinMax<N>` of format `f`, module
+/// `fp_min_max_<format>`.
+pub fn fp_min_max_verilog<const N: usize>(f: &golden::format::float::FloatFormat) -> String {
+    let mut uut = crate::fp::min_max::FpMinMax::<N>::new(f);
+    verilog_named(&mut uut, &format!("fp_min_max_{}", f.name()))
+}
+
+/// Verilog of one multiply-round unit `MulRound<D, I, T>` as the fixed slab tester of a preset uses it
+/// (floor for a lower bound, `ceil` for an upper; the tester's shift; product not registered), module
+/// `mul_round_<format>_floor` or `_ceil`; an error for a format that is not a preset.
+pub fn mul_round_verilog(fmt: &FixFormat, ceil: bool) -> Result<String, String> {
+    let name = format!(
+        "mul_round_{}_{}",
+        fmt.name(),
+        if ceil { "ceil" } else { "floor" }
+    );
+    let shift = fmt.shift() as usize;
+    match (fmt.g, fmt.i, fmt.t) {
+        (8, 12, 14) => Ok(verilog_named(
+            &mut crate::slab::mul_round::MulRound::<9, 12, 14>::new(ceil, shift, false),
+            &name,
+        )),
+        (12, 16, 20) => Ok(verilog_named(
+            &mut crate::slab::mul_round::MulRound::<13, 16, 20>::new(ceil, shift, false),
+            &name,
+        )),
+        (16, 20, 24) => Ok(verilog_named(
+            &mut crate::slab::mul_round::MulRound::<17, 20, 24>::new(ceil, shift, false),
+            &name,
+        )),
+        _ => Err(format!(
+            "no multiply-round instance for {}: the presets are b8, b12, b16",
+            fmt.name()
+        )),
+    }
+}

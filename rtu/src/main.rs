@@ -9,6 +9,7 @@ mod chart;
 mod cull_cmd;
 mod fit_cmd;
 mod float_check;
+mod formal_cmd;
 mod main_job;
 mod out_file;
 mod run_bundles;
@@ -126,6 +127,10 @@ enum Cmd {
     /// on each scene and ray set, their area and latency against fp32, and their Verilog (writes
     /// fit/fit.csv, fit/fit.md, fit/*.v; --synth runs Yosys on fitted formats not in the area table).
     Fit(fit_cmd::Args),
+    /// Formal proofs on the exported Verilog (SymbiYosys): the float units against symfpu's correctly
+    /// rounded reference, every tester's latency, valid and tag by k-induction, each with a mutant that
+    /// must fail (writes formal/formal.csv, formal/formal.md, formal/cex/*.vcd).
+    Formal(formal_cmd::Args),
     /// The failure cases of the textbook methods across the three testers, naive against ours (writes
     /// stability.csv and stability.md).
     Stability,
@@ -302,6 +307,7 @@ fn main() -> ExitCode {
             crate::out_file::write_file(&cli.out.join("bundle_scenes.md"), t)
         }),
         Cmd::Fit(a) => fit_cmd::run(&a, &cli.out).map(|t| print!("{t}")),
+        Cmd::Formal(a) => formal_cmd::run(&a, &cli.out).map(|t| print!("{t}")),
         Cmd::Stability => stability_cmd::run(&cli.out).map(|t| print!("{t}")),
         Cmd::Sweep(a) => sweep_cmd::run(&a, &cli.out).map(|t| print!("{t}")),
         Cmd::BundleCampaign(a) => bundle_cmd::campaign(&a, &cli.out).map(|t| print!("{t}")),

@@ -12,6 +12,7 @@
 //! | [`bundle::pair_float`] | the float bundle pair's vector streams, port encoding and cross-simulation loop |
 //! | [`bundle::split`] | the results processor's driver, clock-by-clock stimulus, checker and cross-simulation |
 //! | [`engine`] | one streaming call over the model, the rust-hdl simulation and Verilator |
+//! | [`formal`] | formal proofs on the exported Verilog (SymbiYosys): float units against `symfpu`, pipeline latency by k-induction, mutants |
 //! | [`dut`] | the [`dut::PipelinedDut`] trait and a stream runner that checks results, tag order and latency |
 //! | [`prop`] | proptest with shrinking and a VCD of the shrunk case for blocks with a random raw-input generator |
 //! | [`rtl_sim`] | drives a rust-hdl block cycle by cycle (the fast direct loop), with optional VCD |
@@ -24,6 +25,7 @@ pub mod bundle;
 pub mod campaign;
 pub mod dut;
 pub mod engine;
+pub mod formal;
 pub mod plane;
 pub mod prop;
 pub mod rtl_sim;
