@@ -353,3 +353,10 @@ pub fn mul_round_verilog(fmt: &FixFormat, ceil: bool) -> Result<String, String> 
         )),
     }
 }
+
+/// Verilog of the fixed cull-plane tester's directed reciprocal table `BoundTable` with `2^r` entries,
+/// module `plane_recip_table_r<r>`.
+pub fn plane_recip_table_verilog(r: u32) -> String {
+    let mut uut = crate::plane::bound_table::BoundTable::new(r);
+    verilog_named(&mut uut, &format!("plane_recip_table_r{r}"))
+}

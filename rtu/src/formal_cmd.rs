@@ -43,6 +43,8 @@ fn proofs(quick: bool, verilog: &Path) -> Result<Vec<Proof>, String> {
     for fmt in golden::format::fixed::FixFormat::presets() {
         v.extend(tb::formal::mul_round_proofs(&fmt, true)?);
     }
+    // The fixed cull-plane testers' table (every preset reads R = 8).
+    v.extend(tb::formal::recip_table_proofs(8, true, true));
     let lat_path = verilog.join("latency.csv");
     let lat =
         std::fs::read_to_string(&lat_path).map_err(|e| format!("{}: {e}", lat_path.display()))?;

@@ -587,6 +587,65 @@ endmodule
     )
 }
 
+/// The proof that every entry of the cull-plane tester's reciprocal table with `2^r` entries bounds the
+/// true reciprocal in its direction, with a mutant (one lower bound one too large) where `mutant`.
+///
+/// Entry `i` serves every significand `m` in `[1 + i/2^r, 1 + (i+1)/2^r)`, and `2^(r+1)/m` falls as `m`
+/// grows, so `rl[i]` is a lower bound for the whole interval exactly when `rl[i] (2^r + i + 1) <= 2^(2r+1)`
+/// and `rh[i]` an upper bound exactly when `rh[i] (2^r + i) >= 2^(2r+1)`: the property, over every index
+/// (the bits above `r` included, which the table ignores) and both halves.
+pub fn recip_table_proofs(r: u32, quick: bool, mutant: bool) -> Vec<Proof> {
+    let module = format!("plane_recip_table_r{r}");
+    let text = rtl::export::plane_recip_table_verilog(r);
+    let w = 2 * r + 4;
+    let harness = format!(
+        "\
+module formal_top(input clock);
+  localparam R = {r}, W = {w};
+  (* anyconst *) reg [11:0] idx;
+  (* anyconst *) reg upper;
+  wire [13:0] rv;
+  {module} dut(.idx(idx), .upper(upper), .rv(rv));
+  wire [W-1:0] i = idx[R-1:0];
+  wire [W-1:0] v = rv;
+  wire [W-1:0] num = {{{{(W-1){{1'b0}}}}, 1'b1}} << (2 * R + 1);
+  wire [W-1:0] base = {{{{(W-1){{1'b0}}}}, 1'b1}} << R;
+  always @(*) assert(upper ? (v * (base + i) >= num) : (v * (base + i + 1) <= num));
+endmodule
+"
+    );
+    let p = Proof {
+        name: format!("recip_{module}"),
+        property: format!(
+            "every entry bounds 2^{}/m over its interval: rl below, rh above",
+            r + 1
+        ),
+        module: module.clone(),
+        format: format!("R = {r}"),
+        mutant: None,
+        expect: Expect::Holds,
+        engine: Engine::Bmc(1),
+        sources: vec![(format!("{module}.v"), text)],
+        harness,
+        prelude: String::new(),
+        quick,
+    };
+    let mut v = vec![];
+    if mutant {
+        let (lo, _) = golden::plane::fix::recip_entry(r, 5);
+        let w2 = r + 2;
+        v.push(mutant_of(
+            &p,
+            "entry",
+            "entry 5's lower bound one too large",
+            &format!("{r}'d5: begin rl = {w2}'d{lo};"),
+            &format!("{r}'d5: begin rl = {w2}'d{};", lo + 1),
+        ));
+    }
+    v.insert(0, p);
+    v
+}
+
 /// The body of module `name` in `text` (from its header to its `endmodule`).
 fn module_body<'a>(text: &'a str, name: &str) -> Option<(usize, &'a str)> {
     let start = text.find(&format!("module {name}("))?;
