@@ -92,13 +92,10 @@ pub fn run(a: &Args, out: &Path) -> Result<String, String> {
     let verilog = dir.join("verilog");
     rtl::export::export_all(&verilog).map_err(|e| format!("{}: {e}", verilog.display()))?;
     let mut ps = proofs(a.quick, &verilog)?;
+    let keys = |s: &str| crate::list(s, |k| Ok(k.to_string()));
     if let Some(only) = &a.only {
-        let keys: Vec<&str> = only
-            .split(',')
-            .map(str::trim)
-            .filter(|k| !k.is_empty())
-            .collect();
-        ps.retain(|p| keys.iter().any(|k| p.name.contains(k)));
+        let keys = keys(only)?;
+        ps.retain(|p| keys.iter().any(|k| p.name.contains(k.as_str())));
         if ps.is_empty() {
             return Err(format!(
                 "--only {only}: no proof's name contains any of these"
@@ -107,18 +104,12 @@ pub fn run(a: &Args, out: &Path) -> Result<String, String> {
     }
     let mut skipped = vec![];
     if let Some(skip) = &a.skip {
-        let keys: Vec<&str> = skip
-            .split(',')
-            .map(str::trim)
-            .filter(|k| !k.is_empty())
-            .collect();
-        ps.retain(|p| {
-            let out = keys.iter().any(|k| p.name.contains(k));
-            if out {
-                skipped.push(p.name.clone());
-            }
-            !out
-        });
+        let keys = keys(skip)?;
+        let (out, kept): (Vec<Proof>, Vec<Proof>) = ps
+            .into_iter()
+            .partition(|p| keys.iter().any(|k| p.name.contains(k.as_str())));
+        skipped = out.into_iter().map(|p| p.name).collect();
+        ps = kept;
     }
     eprintln!(
         "formal: {} proofs and mutants on {} jobs, {} s budget each; work in {}",

@@ -230,22 +230,18 @@ struct UnitVerilog {
 }
 
 fn unit_verilog<const E: usize, const M: usize, const N: usize>(f: &FloatFormat) -> UnitVerilog {
-    let modes = Rounding::ALL;
+    let per_mode = |v: fn(Rounding) -> String, lat: usize| -> Vec<(Rounding, String, usize)> {
+        Rounding::ALL.iter().map(|&m| (m, v(m), lat)).collect()
+    };
     UnitVerilog {
-        add: modes
-            .iter()
-            .map(|&m| {
-                let lat = rtl::fp::add::FP_ADD_LATENCY;
-                (m, rtl::export::fp_add_verilog::<E, M, N>(m), lat)
-            })
-            .collect(),
-        mul: modes
-            .iter()
-            .map(|&m| {
-                let lat = rtl::fp::mul::FP_MUL_LATENCY;
-                (m, rtl::export::fp_mul_verilog::<E, M, N>(m), lat)
-            })
-            .collect(),
+        add: per_mode(
+            rtl::export::fp_add_verilog::<E, M, N>,
+            rtl::fp::add::FP_ADD_LATENCY,
+        ),
+        mul: per_mode(
+            rtl::export::fp_mul_verilog::<E, M, N>,
+            rtl::fp::mul::FP_MUL_LATENCY,
+        ),
         cmp: rtl::export::fp_cmp_verilog::<N>(f),
         min_max: rtl::export::fp_min_max_verilog::<N>(f),
     }
@@ -406,17 +402,21 @@ endmodule
     )
 }
 
-/// A copy of `p` as a mutant: the module text changed at one site, expected to fail.
-fn mutant_of(p: &Proof, tag: &str, what: &str, find: &str, replace: &str) -> Proof {
+/// A copy of `p` as a mutant with the module text `text`, expected to fail.
+fn mutant_with(p: &Proof, tag: &str, what: &str, text: String) -> Proof {
     let mut q = p.clone();
     q.name = format!("{}_mut_{tag}", p.name);
     q.mutant = Some(what.into());
     q.expect = Expect::Fails;
-    let (file, text) = &p.sources[0];
-    let changed =
-        mutate(text, find, replace).unwrap_or_else(|e| panic!("mutant {tag} of {}: {e}", p.module));
-    q.sources[0] = (file.clone(), changed);
+    q.sources[0].1 = text;
     q
+}
+
+/// A copy of `p` as a mutant: the module text changed at one site, expected to fail.
+fn mutant_of(p: &Proof, tag: &str, what: &str, find: &str, replace: &str) -> Proof {
+    let changed = mutate(&p.sources[0].1, find, replace)
+        .unwrap_or_else(|e| panic!("mutant {tag} of {}: {e}", p.module));
+    mutant_with(p, tag, what, changed)
 }
 
 /// The mutants of a float unit's proof `p`: its rounding direction flipped (the unit of the opposite
@@ -440,16 +440,17 @@ fn float_mutants(
         .expect("every mode is built")
         .1;
     let other = rtl::export::fp_unit_module(unit, f, flipped);
-    let mut q = p.clone();
-    q.name = format!("{}_mut_flip", p.name);
-    q.mutant = Some(format!(
+    let what = format!(
         "rounding direction flipped: the {} unit in place of the {} one",
         rtl::export::mode_suffix(flipped),
         rtl::export::mode_suffix(mode)
+    );
+    v.push(mutant_with(
+        p,
+        "flip",
+        &what,
+        text.replace(&other, &p.module),
     ));
-    q.expect = Expect::Fails;
-    q.sources[0] = (format!("{}.v", p.module), text.replace(&other, &p.module));
-    v.push(q);
     if unit == "mul" {
         // One product bit dropped: the significand product's least significant bit forced to zero.
         let find = format!("p_c = a[{m}:0] * b[{m}:0];", m = f.m);
@@ -527,15 +528,16 @@ pub fn mul_round_proofs(
                 fmt.name(),
                 if ceil { "floor" } else { "ceil" }
             );
-            let mut q = p.clone();
-            q.name = format!("{}_mut_flip", p.name);
-            q.mutant = Some(format!(
+            let what = format!(
                 "rounding direction flipped: the {} unit in place of the {mode} one",
                 if ceil { "floor" } else { "ceil" }
+            );
+            v.push(mutant_with(
+                &p,
+                "flip",
+                &what,
+                other.replace(&other_name, &module),
             ));
-            q.expect = Expect::Fails;
-            q.sources[0].1 = other.replace(&other_name, &module);
-            v.push(q);
             // Bit S, the product's lowest bit that survives the shift (dropping a bit below it leaves
             // the floor unchanged whenever the bit is the least significant: an equivalent mutant).
             v.push(mutant_of(
@@ -728,18 +730,15 @@ pub fn pipeline_proofs(
     };
     let mut v = vec![];
     if mutant {
-        let mut q = p.clone();
-        q.name = format!("{}_mut_reg", p.name);
         let reg = valid_register(text, module).map_err(|e| format!("mutant of {module}: {e}"))?;
         let local = reg.strip_prefix(&format!("{module}$")).unwrap_or(&reg);
-        q.mutant = Some(format!(
+        let what = format!(
             "one register removed: the last valid register ({}) a wire",
             local.replace('$', ".")
-        ));
-        q.expect = Expect::Fails;
-        q.sources[0].1 =
+        );
+        let changed =
             bypass_register(text, &reg).map_err(|e| format!("mutant of {module}: {e}"))?;
-        v.push(q);
+        v.push(mutant_with(&p, "reg", &what, changed));
     }
     v.insert(0, p);
     Ok(v)
