@@ -47,6 +47,10 @@ pub struct Args {
     /// rows are written to <out>/fit/area.csv.
     #[arg(long)]
     pub synth: bool,
+    /// Traversal mode, as for `rtu sweep`: `default` (closest hit for primary and bounce rays, any hit for
+    /// shadow rays), `closest`, `any` or `all`.
+    #[arg(long, default_value = "default")]
+    pub mode: String,
 }
 
 /// The result of one format on one ray set, measured on demand and kept.
@@ -142,6 +146,7 @@ pub fn run(a: &Args, out: &Path) -> Result<String, String> {
         b: 1,
         w: a.width,
         h: a.height,
+        mode: crate::sweep_cmd::parse_mode(&a.mode)?,
     };
     let mut rows: Vec<Fitted> = vec![];
     let mut empty: Vec<(String, String)> = vec![];

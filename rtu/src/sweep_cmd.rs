@@ -18,7 +18,7 @@ use golden::plane::fix::CullFixFormat;
 use golden::plane::float::CullFloatFormat;
 use golden::scene::bvh::Bvh;
 use golden::scene::sweep::{
-    traverse, ExactTester, FixTester, FloatTester, Machine, RaySet, SceneStats,
+    traverse, ExactTester, FixTester, FloatTester, Intervals, Machine, Mode, RaySet, SceneStats,
 };
 use golden::scene::traverse::{trace, AabbOnly, NodeTester};
 use golden::scene::tri_scene::TriScene;
@@ -74,6 +74,10 @@ pub struct Args {
     /// slowest module's Fmax) and rays per second.
     #[arg(long)]
     pub timing: Option<PathBuf>,
+    /// Traversal mode: `default` (closest hit for primary and bounce rays, any hit for shadow rays, as a
+    /// renderer runs them), or `closest`, `any` or `all` (all hits: nothing shrinks or stops) for every set.
+    #[arg(long, default_value = "default")]
+    pub mode: String,
 }
 
 impl Args {
@@ -93,14 +97,15 @@ impl Args {
             seed: 1,
             area: None,
             timing: None,
+            mode: "default".into(),
         }
     }
 
     /// The arguments as `rtu sweep` options.
     pub fn describe(&self) -> String {
         format!(
-            "rtu sweep --scenes {} --fixed {} --float {} --k {} --bundle {} --width {} --height {}",
-            self.scenes, self.fixed, self.float, self.k, self.bundle, self.width, self.height
+            "rtu sweep --scenes {} --fixed {} --float {} --k {} --bundle {} --width {} --height {} --mode {}",
+            self.scenes, self.fixed, self.float, self.k, self.bundle, self.width, self.height, self.mode
         )
     }
 }
@@ -426,6 +431,62 @@ pub struct Rec {
     /// The modules' post-route figures together: the slowest one's Fmax, their LUT4s summed; `None`
     /// unless the timing table has every module.
     pub timing: Option<Timing>,
+    /// The traversal mode (`None`: each ray set's default).
+    pub mode: Option<Mode>,
+    /// Single rays (`B = 1`) only: what the format's interval costs, [`IntervalCost`].
+    pub iv: Option<IntervalCost>,
+}
+
+/// What a format's `t` interval costs (the README's "what a loose interval costs"): the same machine
+/// with the format's culls but the exact tester's intervals ([`Intervals`]), and for `K > 0` with the
+/// planes' culls but the format's slab interval (no entry/exit update). In all-hits mode both equal the
+/// format's own figures.
+#[derive(Clone, Copy, Debug)]
+pub struct IntervalCost {
+    pub exact: SceneStats,
+    pub slab_entry: Option<SceneStats>,
+}
+
+/// Runs the two machines of [`IntervalCost`] for tester `t` of format `f`.
+pub fn interval_cost(
+    p: &Prepared,
+    sets: &mut [RaySet],
+    t: &mut dyn NodeTester,
+    f: &Format,
+    planes: &[Vec<Plane>],
+    c: RunCfg,
+) -> Result<IntervalCost, String> {
+    let mut ex = ExactTester::new(&p.bvh, planes, c.k);
+    let exact = run_machine(
+        p,
+        sets,
+        &mut Intervals {
+            cull: t,
+            interval: &mut ex,
+        },
+        None,
+        c,
+    )
+    .map_err(|e| format!("{} with exact intervals: {e}", f.name()))?;
+    let slab_entry = if c.k > 0 {
+        let (mut slab, _) = tester(p, f, planes, 0)?;
+        Some(
+            run_machine(
+                p,
+                sets,
+                &mut Intervals {
+                    cull: t,
+                    interval: slab.as_mut(),
+                },
+                None,
+                c,
+            )
+            .map_err(|e| format!("{} with the slab's interval: {e}", f.name()))?,
+        )
+    } else {
+        None
+    };
+    Ok(IntervalCost { exact, slab_entry })
 }
 
 impl Rec {
@@ -560,13 +621,30 @@ pub fn tester(
     })
 }
 
-/// What a machine run needs besides the tester: planes per node, bundle size, image size.
+/// What a machine run needs besides the tester: planes per node, bundle size, image size, and the
+/// traversal mode (`None`: each ray set's default, [`Mode::default_for`]).
 #[derive(Clone, Copy, Debug)]
 pub struct RunCfg {
     pub k: usize,
     pub b: usize,
     pub w: usize,
     pub h: usize,
+    pub mode: Option<Mode>,
+}
+
+/// Parses a `--mode` option: `default` (each ray set's own mode) or a [`Mode`] for every set.
+pub fn parse_mode(s: &str) -> Result<Option<Mode>, String> {
+    if s == "default" {
+        return Ok(None);
+    }
+    Mode::parse(s)
+        .map(Some)
+        .map_err(|_| format!("--mode `{s}`: expected default, closest, any or all"))
+}
+
+/// The name of a `--mode` value, as the tables print it.
+pub fn mode_name(m: Option<Mode>) -> &'static str {
+    m.map_or("default", |m| m.name())
 }
 
 /// Runs one machine over one ray set (`name`: primary, bounce or shadow) of a prepared scene.
@@ -584,6 +662,7 @@ pub fn run_set(
         planes: c.k,
         pair: if c.b > 1 { pair } else { None },
         rebound: true,
+        mode: c.mode.unwrap_or_else(|| Mode::default_for(name)),
     };
     traverse(&p.bvh, &p.sc.tris, set, &built, &mut m, || {})
         .map_err(|e| format!("{name} rays: {e}"))
@@ -656,6 +735,7 @@ pub fn measure(a: &Args) -> Result<(Vec<Rec>, HashMap<String, f64>), String> {
         scenes.push(s);
     }
     let set_names = list(&a.sets, |s| Ok(s.to_string()))?;
+    let mode = parse_mode(&a.mode)?;
     let total = scenes.len() * ks.len() * bs.len() * (fmts.len() + 1);
     let mut done = 0;
     let mut recs = vec![];
@@ -683,6 +763,7 @@ pub fn measure(a: &Args) -> Result<(Vec<Rec>, HashMap<String, f64>), String> {
                     b,
                     w: a.width,
                     h: a.height,
+                    mode,
                 };
                 let mut ex = ExactTester::new(&p.bvh, &planes, k);
                 let exact = run_machine(&p, &mut sets, &mut ex, Some(&BundlePath::Exact), cfg)
@@ -700,6 +781,14 @@ pub fn measure(a: &Args) -> Result<(Vec<Rec>, HashMap<String, f64>), String> {
                     }
                     let st = run_machine(&p, &mut sets, t.as_mut(), pair.as_ref(), cfg)
                         .map_err(|e| format!("{name} {} K{k} B{b}: {e}", f.name()))?;
+                    let iv = if b == 1 {
+                        Some(
+                            interval_cost(&p, &mut sets, t.as_mut(), f, &planes, cfg)
+                                .map_err(|e| format!("{name} K{k} B{b}: {e}"))?,
+                        )
+                    } else {
+                        None
+                    };
                     let mods = modules(f, k, b)?;
                     let area = mods
                         .iter()
@@ -730,6 +819,8 @@ pub fn measure(a: &Args) -> Result<(Vec<Rec>, HashMap<String, f64>), String> {
                         modules: mods,
                         area,
                         timing: tm,
+                        mode,
+                        iv,
                     });
                 }
             }
@@ -754,13 +845,22 @@ pub fn pareto(pts: &[(f64, f64)]) -> Vec<usize> {
 
 /// CSV header of `sweep.csv`. `plane_tests`: plane evaluations (each single-ray test of a node runs its
 /// `K` plane units; the pair tests boxes only).
-pub const CSV_HEADER: &str = "scene,datapath,format,coord_bits,k,bundle,rays,box_tests,plane_tests,pair_tests,pair_ideal,pair_decided,cycles_per_ray,exact_cycles_per_ray,extra_cycles,tri_tests,exact_tri_tests,extra_tri_tests,false_box_hits,true_box_misses,false_hit_rate,plane_culls,mean_looseness,looseness_of_diagonal,hits,modules,latency,ice40_lut4,ice40_depth,xilinx_lut,xilinx_dsp,pareto_accuracy,pareto_speed,ecp5_fmax_mhz,ecp5_lut4,rays_per_s,rays_per_s_per_klut4,pareto_rays_per_area";
+pub const CSV_HEADER: &str = "scene,datapath,format,coord_bits,k,bundle,rays,box_tests,plane_tests,pair_tests,pair_ideal,pair_decided,cycles_per_ray,exact_cycles_per_ray,extra_cycles,tri_tests,exact_tri_tests,extra_tri_tests,false_box_hits,true_box_misses,false_hit_rate,plane_culls,mean_looseness,looseness_of_diagonal,hits,modules,latency,ice40_lut4,ice40_depth,xilinx_lut,xilinx_dsp,pareto_accuracy,pareto_speed,ecp5_fmax_mhz,ecp5_lut4,rays_per_s,rays_per_s_per_klut4,pareto_rays_per_area,mode,entry_skips,exact_interval_box_tests,exact_interval_tri_tests,slab_entry_box_tests,slab_entry_tri_tests";
 
 /// Writes `sweep.csv`, `sweep.md` and the charts under `out`; returns the markdown.
 pub fn report(recs: &[Rec], out: &Path, diag: &HashMap<String, f64>) -> Result<String, String> {
     std::fs::create_dir_all(out).map_err(|e| format!("{}: {e}", out.display()))?;
     let mut csv = format!("{CSV_HEADER}\n");
-    let mut md = String::from("| scene | format | K | B | cycles/ray | extra cycles vs exact | extra triangle tests | false-hit rate | looseness (of diagonal) | iCE40 LUT4 | 7-series LUT + DSP | latency | ECP5 MHz | Mrays/s | Mrays/s per 1k ECP5 LUT4 | front |\n|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|\n");
+    let mode = recs.first().map_or("default", |r| mode_name(r.mode));
+    let mut md = format!(
+        "Traversal mode: {mode}{}.\n\n",
+        if mode == "default" {
+            " (closest hit for primary and bounce rays, any hit for shadow rays)"
+        } else {
+            ""
+        }
+    );
+    md.push_str("| scene | format | K | B | cycles/ray | extra cycles vs exact | extra triangle tests | false-hit rate | looseness (of diagonal) | iCE40 LUT4 | 7-series LUT + DSP | latency | ECP5 MHz | Mrays/s | Mrays/s per 1k ECP5 LUT4 | front |\n|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|\n");
     let scenes: Vec<&String> = {
         let mut v: Vec<&String> = recs.iter().map(|r| &r.scene).collect();
         v.dedup();
@@ -799,7 +899,7 @@ pub fn report(recs: &[Rec], out: &Path, diag: &HashMap<String, f64>) -> Result<S
             let tm = r.timing.as_ref();
             let _ = writeln!(
                 csv,
-                "{},{},{},{},{},{},{},{},{},{},{},{},{:.4},{:.4},{:.6},{},{},{:.6},{},{},{:.6},{},{:.6e},{:.6e},{},{},{},{},{},{},{},{},{},{},{},{},{},{}",
+                "{},{},{},{},{},{},{},{},{},{},{},{},{:.4},{:.4},{:.6},{},{},{:.6},{},{},{:.6},{},{:.6e},{:.6e},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{}",
                 r.scene,
                 r.format.datapath(),
                 r.format.name(),
@@ -838,6 +938,12 @@ pub fn report(recs: &[Rec], out: &Path, diag: &HashMap<String, f64>) -> Result<S
                 opt(r.rays_per_s(), &|v| format!("{v:.4e}")),
                 opt(r.rays_per_s_per_klut4(), &|v| format!("{v:.4e}")),
                 ft.contains(&i),
+                mode_name(r.mode),
+                r.st.entry_skips,
+                ivs(r, &|c| Some(c.exact.box_tests)),
+                ivs(r, &|c| Some(c.exact.tri_tests)),
+                ivs(r, &|c| c.slab_entry.map(|s| s.box_tests)),
+                ivs(r, &|c| c.slab_entry.map(|s| s.tri_tests)),
             );
             let front = [
                 (fa.contains(&i), "accuracy"),
@@ -918,6 +1024,7 @@ pub fn report(recs: &[Rec], out: &Path, diag: &HashMap<String, f64>) -> Result<S
         }
     }
     crate::out_file::write_file(&out.join("sweep.csv"), &csv)?;
+    md.push_str(&interval_table(recs));
     let missing = modules_without(recs, |r| r.area.is_none());
     if !missing.is_empty() {
         let _ = writeln!(
@@ -938,6 +1045,59 @@ pub fn report(recs: &[Rec], out: &Path, diag: &HashMap<String, f64>) -> Result<S
     }
     crate::out_file::write_file(&out.join("sweep.md"), &md)?;
     Ok(md)
+}
+
+/// A field of a record's [`IntervalCost`], empty when it has none.
+fn ivs(r: &Rec, f: &dyn Fn(&IntervalCost) -> Option<u64>) -> String {
+    r.iv.as_ref()
+        .and_then(f)
+        .map_or(String::new(), |v| v.to_string())
+}
+
+/// The markdown table of what each single-ray configuration's interval costs (records with an
+/// [`IntervalCost`]): node and triangle tests beyond the same culls with exact intervals, and for planes
+/// the tests their entry/exit update saves against the slab's own interval.
+fn interval_table(recs: &[Rec]) -> String {
+    let with: Vec<&Rec> = recs.iter().filter(|r| r.iv.is_some()).collect();
+    if with.is_empty() {
+        return String::new();
+    }
+    let pct = |a: u64, b: u64| format!("{:+.2}%", 100.0 * (a as f64 / b.max(1) as f64 - 1.0));
+    let mut md = format!(
+        "\n**What a loose interval costs** (single rays, mode {}): the format's node tests and triangle \
+         tests beyond those of the same culls with the exact tester's intervals (the looseness of `t` \
+         alone), and with planes the tests their entry/exit update saves against the format's slab \
+         interval (the culls unchanged). Entry skips: a ray's visits of a node skipped because its entry \
+         lies beyond the closest hit so far.\n\n\
+         | scene | format | K | node tests | entry skips | extra node tests from looseness | extra triangle tests from looseness | node tests the planes' entry saves | triangle tests the planes' entry saves |\n\
+         |---|---|---|---|---|---|---|---|---|\n",
+        mode_name(with[0].mode)
+    );
+    for r in with {
+        let c = r.iv.as_ref().expect("filtered");
+        let saved = |f: fn(&SceneStats) -> u64| {
+            c.slab_entry.map_or("—".to_string(), |s| {
+                format!(
+                    "{:.2}%",
+                    100.0 * (1.0 - f(&r.st) as f64 / f(&s).max(1) as f64)
+                )
+            })
+        };
+        let _ = writeln!(
+            md,
+            "| {} | {} | {} | {} | {} | {} | {} | {} | {} |",
+            r.scene,
+            r.format.name(),
+            r.k,
+            r.st.box_tests,
+            r.st.entry_skips,
+            pct(r.st.box_tests, c.exact.box_tests),
+            pct(r.st.tri_tests, c.exact.tri_tests),
+            saved(|s| s.box_tests),
+            saved(|s| s.tri_tests),
+        );
+    }
+    md
 }
 
 /// The module sets (`a+b`) of the records `lacks` picks, sorted, each once.

@@ -91,6 +91,14 @@ fn sweep_measures_every_configuration_and_marks_the_front() {
             // No planes: a cull of a node whose box the ray hits would have been an error.
             assert_eq!(row["plane_culls"], "0", "{row:?}");
         }
+        assert_eq!(row["mode"], "default");
+        // What the interval costs is measured for single rays, and the planes' entry for K > 0.
+        let measured = |k: &str| !row[k].is_empty();
+        assert_eq!(measured("exact_interval_box_tests"), row["bundle"] == "1");
+        assert_eq!(
+            measured("slab_entry_box_tests"),
+            row["bundle"] == "1" && row["k"] != "0"
+        );
         if row["bundle"] == "1" {
             if row["k"] == "0" {
                 // A conservative slab tester keeps every node the exact one keeps.
@@ -138,6 +146,9 @@ fn sweep_measures_every_configuration_and_marks_the_front() {
     }
     let md = std::fs::read_to_string(out.join("sweep.md")).unwrap();
     assert!(md.contains("No post-route timing for") && md.contains("slab_float_e5m10"));
+    assert!(md.contains("Traversal mode: default") && md.contains("What a loose interval costs"));
+    // Closest hit (primary and bounce rays) skips nodes by entry.
+    assert!(r.iter().any(|x| x["entry_skips"] != "0"), "{r:?}");
     for chart in [
         "sweep_soup_accuracy.svg",
         "sweep_soup_speed.svg",
@@ -245,6 +256,8 @@ fn bad_options_and_scene_files_are_named_errors() {
         ),
         (vec!["sweep", "--offset", "nan"], "--offset"),
         (vec!["fit", "--budget=-1"], "--budget -1"),
+        (vec!["sweep", "--mode", "nearest"], "--mode `nearest`"),
+        (vec!["fit", "--mode", "first"], "--mode `first`"),
         (
             vec!["sweep", "--area", "/nonexistent/area.csv"],
             "--area /nonexistent/area.csv",
@@ -259,6 +272,50 @@ fn bad_options_and_scene_files_are_named_errors() {
         let r = rtu(&a);
         let err = String::from_utf8_lossy(&r.stderr);
         assert!(!r.status.success() && err.contains(want), "{args:?}: {err}");
+    }
+    std::fs::remove_dir_all(&dir).unwrap();
+}
+
+/// In all-hits mode nothing skips by entry, so the interval is never used: the same culls with exact
+/// intervals, or with the slab's interval, do exactly the format's own work.
+#[test]
+fn all_hits_mode_makes_the_interval_irrelevant() {
+    let dir = tmp("all");
+    let out = dir.join("out");
+    let o = rtu(&[
+        "--out",
+        out.to_str().unwrap(),
+        "sweep",
+        "--scenes",
+        "mesh",
+        "--width",
+        "8",
+        "--height",
+        "6",
+        "--fixed",
+        "b8",
+        "--float",
+        "",
+        "--k",
+        "0,1",
+        "--bundle",
+        "1",
+        "--mode",
+        "all",
+    ]);
+    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    let r = rows(&out.join("sweep.csv"));
+    assert_eq!(r.len(), 2);
+    for row in &r {
+        assert_eq!(
+            (row["mode"].as_str(), row["entry_skips"].as_str()),
+            ("all", "0")
+        );
+        assert_eq!(row["exact_interval_box_tests"], row["box_tests"], "{row:?}");
+        assert_eq!(row["exact_interval_tri_tests"], row["tri_tests"], "{row:?}");
+        if row["k"] == "1" {
+            assert_eq!(row["slab_entry_box_tests"], row["box_tests"], "{row:?}");
+        }
     }
     std::fs::remove_dir_all(&dir).unwrap();
 }

@@ -13,14 +13,25 @@
 //! (the pair tests boxes only), which is conservative. The rays kept go on to both children as one bundle,
 //! re-bounded around the rays kept when `rebound` is set.
 //!
-//! # Order and hits
-//! The traversal is an *all-hits* traversal: no ray's `t_max` shrinks at a hit, so the nodes visited do not
-//! depend on child order and a bundle's rays never disagree on where to stop; that is what a bundle
-//! traversal does, and using it for `B = 1` too keeps every configuration comparable (a front-to-back
-//! closest-hit traversal, [`crate::scene::traverse::closest_hit`], does fewer triangle tests; the ratios between
-//! configurations are what the sweep reports). At a leaf every active ray tests every triangle exactly
-//! ([`crate::scene::tri::tri_hit`]); its closest hit is the smallest `(t, triangle)` over the leaves it reached,
-//! and must equal the exact reference's for every ray, or the traversal returns an error.
+//! # Modes, order and hits
+//! A parent tests both children (the pair on the bundle, or the single-ray tester per active ray); the
+//! children are pushed far first, so the one with the lesser entry (the least entry of its kept rays, as
+//! their testers reported it; a ray the pair keeps inherits its entry into the parent) is visited first.
+//! [`Mode`] says what a hit does:
+//! - **closest hit** (camera and bounce rays): each ray's `t_max` shrinks to its closest hit so far (the
+//!   exact `t` rounded up to f64, so nothing at or before the hit is cut off); the rays handed to the
+//!   testers, and the bundles re-bounded around them, carry the shrunk range, and a popped node is skipped
+//!   for every ray whose entry lies beyond its `t_max` (an *entry skip*). A loose entry therefore costs
+//!   node tests and triangle tests, and the cull planes' entry update saves them.
+//! - **any hit** (shadow rays): a ray is finished at the first triangle it hits (the triangles of a leaf in
+//!   order, the tests after the hit not counted); a bundle goes on with its other rays.
+//! - **all hits**: nothing shrinks or stops; the nodes visited do not depend on the order.
+//!
+//! At a leaf every active ray tests the triangles exactly ([`crate::scene::tri::tri_hit`]). Every ray's
+//! closest hit (closest and all hits: the smallest `(t, triangle)` over the leaves it reached) must equal
+//! the exact reference's, and in any-hit mode whether it hits must, or the traversal returns an error. A
+//! single-ray test is judged against the exact slab test of the ray's *current* range, so culling a box
+//! that lies beyond the closest hit so far is no false miss.
 //!
 //! # What is counted
 //! Box tests and pair tests (each one tester cycle, both units pipelined at one test per clock), pair
@@ -264,6 +275,9 @@ pub struct SceneStats {
     pub tri_tests: u64,
     /// Rays with a hit.
     pub hits: u64,
+    /// Closest-hit mode: a ray's visits of a node skipped because its entry into the node (as its tester
+    /// reported it) lies beyond the closest hit found so far.
+    pub entry_skips: u64,
 }
 
 impl SceneStats {
@@ -283,6 +297,7 @@ impl SceneStats {
         self.leaf_visits += o.leaf_visits;
         self.tri_tests += o.tri_tests;
         self.hits += o.hits;
+        self.entry_skips += o.entry_skips;
     }
 
     /// Tester cycles (box tests plus pair tests) per ray.
@@ -307,7 +322,7 @@ pub struct RaySet<'a> {
     pub rays: &'a [Ray],
     pub exact: ExactHits,
     pub closest: Vec<Option<Hit>>,
-    memo: HashMap<(u32, u32), Option<Hit>>,
+    memo: HashMap<(u32, u32), LeafHit>,
 }
 
 impl<'a> RaySet<'a> {
@@ -325,24 +340,33 @@ impl<'a> RaySet<'a> {
         }
     }
 
-    /// The closest hit of ray `i` among the triangles of leaf `node` (memoised).
-    fn leaf_hit(&mut self, bvh: &Bvh, tris: &[Triangle], i: usize, node: usize) -> Option<Hit> {
+    /// Ray `i` against the triangles of leaf `node` (memoised).
+    fn leaf_hit(&mut self, bvh: &Bvh, tris: &[Triangle], i: usize, node: usize) -> LeafHit {
         let ray = &self.rays[i];
         self.memo
             .entry((i as u32, node as u32))
             .or_insert_with(|| {
-                let mut best: Option<Hit> = None;
-                for &ti in bvh.leaf_tris(node) {
+                let mut l = LeafHit::default();
+                for (p, &ti) in bvh.leaf_tris(node).iter().enumerate() {
                     if let Some(t) = tri_hit(ray, &tris[ti]) {
-                        if better(&t, ti, &best) {
-                            best = Some((ti, t));
+                        l.first.get_or_insert(p);
+                        if better(&t, ti, &l.closest) {
+                            l.closest = Some((ti, t));
                         }
                     }
                 }
-                best
+                l
             })
             .clone()
     }
+}
+
+/// A ray against one leaf's triangles: its closest hit among them, and the position in the leaf of the
+/// first triangle it hits (where an any-hit traversal stops).
+#[derive(Clone, Debug, Default)]
+struct LeafHit {
+    closest: Option<Hit>,
+    first: Option<usize>,
 }
 
 fn better(t: &num_rational::BigRational, i: usize, best: &Option<Hit>) -> bool {
@@ -352,14 +376,95 @@ fn better(t: &num_rational::BigRational, i: usize, best: &Option<Hit>) -> bool {
     }
 }
 
+/// How a traversal ends and what it returns, as a renderer runs its rays.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+pub enum Mode {
+    /// Closest hit (camera and bounce rays): nodes front to back by the tester's own entry, each ray's
+    /// `t_max` shrinking to its closest hit so far, a node skipped for a ray whose entry lies beyond it.
+    Closest,
+    /// Any hit (shadow rays): a ray stops at the first triangle it hits within its range.
+    Any,
+    /// All hits: nothing shrinks and nothing stops early; every node any tester keeps is visited.
+    All,
+}
+
+impl Mode {
+    /// `closest`, `any` or `all`.
+    pub fn parse(s: &str) -> Result<Mode, Error> {
+        match s {
+            "closest" => Ok(Mode::Closest),
+            "any" => Ok(Mode::Any),
+            "all" => Ok(Mode::All),
+            _ => Err(Error::Io(format!(
+                "traversal mode `{s}`: expected closest, any or all"
+            ))),
+        }
+    }
+
+    pub fn name(&self) -> &'static str {
+        match self {
+            Mode::Closest => "closest",
+            Mode::Any => "any",
+            Mode::All => "all",
+        }
+    }
+
+    /// The mode a renderer runs a ray set in: any hit for shadow rays, closest hit otherwise.
+    pub fn default_for(set: &str) -> Mode {
+        if set == "shadow" {
+            Mode::Any
+        } else {
+            Mode::Closest
+        }
+    }
+}
+
+/// A node tester that culls as one tester and reports the interval of another: `cull` decides, and on a
+/// node it keeps the interval is `interval`'s (or `cull`'s own where `interval` culls). With `cull` a
+/// format's tester and `interval` the exact tester of the same planes, a closest-hit traversal differs
+/// from the format's own only by the looseness of the format's `t` interval; with `interval` the same
+/// format's slab tester (no planes), only by the planes' entry/exit update.
+pub struct Intervals<'t> {
+    pub cull: &'t mut dyn NodeTester,
+    pub interval: &'t mut dyn NodeTester,
+}
+
+impl NodeTester for Intervals<'_> {
+    fn test(&mut self, ray: &Ray, node: usize) -> Option<(f64, f64)> {
+        let c = self.cull.test(ray, node)?;
+        Some(self.interval.test(ray, node).unwrap_or(c))
+    }
+}
+
 /// A configuration: the single-ray tester and how many planes it tests per node (with none, a cull of a
-/// node whose box the ray hits is a false miss, an error), the pair (`None`: single rays only) and
-/// re-bounding.
+/// node whose box the ray hits is a false miss, an error), the pair (`None`: single rays only),
+/// re-bounding, and the traversal mode.
 pub struct Machine<'t> {
     pub tester: &'t mut dyn NodeTester,
     pub planes: usize,
     pub pair: Option<&'t BundlePath>,
     pub rebound: bool,
+    pub mode: Mode,
+}
+
+/// What one ray's traversal found and what it cost.
+#[derive(Clone, Debug, Default, PartialEq)]
+pub struct RayResult {
+    /// The closest hit found (closest and all hits), or the first hit found (any hit).
+    pub hit: Option<Hit>,
+    /// Single-ray node tests of this ray, pair tests of a bundle it was active in, triangle tests.
+    pub node_tests: u64,
+    pub pair_tests: u64,
+    pub tri_tests: u64,
+}
+
+/// A node on the traversal stack: the rays still active in it (a mask over the bundle's rays), the
+/// bundle the pair tests, and each active ray's entry into the node as its tester reported it.
+struct Pending {
+    node: usize,
+    mask: u64,
+    bundle: Bundle,
+    entry: Vec<f64>,
 }
 
 /// Traverses every bundle of `bundles` (indices into `set.rays`; one-ray bundles for `B = 1`) through
@@ -370,161 +475,321 @@ pub fn traverse(
     set: &mut RaySet,
     bundles: &[Built],
     m: &mut Machine,
-    mut progress: impl FnMut(),
+    progress: impl FnMut(),
 ) -> Result<SceneStats, Error> {
-    let mut st = SceneStats::default();
-    let mut best: Vec<Option<Hit>> = vec![None; set.rays.len()];
-    let mut reached = vec![false; set.rays.len()];
-    for b in bundles {
-        let n = b.rays.len();
-        if n == 0 || n > 64 {
-            return Err(Error::Io(format!("a bundle of {n} rays: 1..=64 expected")));
+    traverse_rays(bvh, tris, set, bundles, m, progress).map(|(st, _)| st)
+}
+
+/// The traversal state of one ray set under one machine.
+struct Walk<'a, 'b, 'r, 'm, 't> {
+    bvh: &'a Bvh,
+    tris: &'a [Triangle],
+    set: &'b mut RaySet<'r>,
+    m: &'m mut Machine<'t>,
+    st: SceneStats,
+    /// Each ray's range as the traversal hands it on (its `t_max` shrinks in closest-hit mode).
+    cur: Vec<Ray>,
+    /// Set when a ray is finished (any-hit mode).
+    done: Vec<bool>,
+    out: Vec<RayResult>,
+}
+
+impl Walk<'_, '_, '_, '_, '_> {
+    /// True when ray `i`, in its current range, hits the box of `node` (exactly).
+    fn hits_now(&self, i: usize, node: usize) -> bool {
+        self.set.exact.hits(i, node)
+            && (self.cur[i].t_max == self.set.rays[i].t_max
+                || crate::bundle::check::slab_hit(&self.cur[i], &self.bvh.nodes[node].bounds))
+    }
+
+    /// Tests `node` for the rays of `b` in `active` (entries `entry`, inherited from the parent): the pair
+    /// on the bundle when more than one ray is active, else (or when it splits) the single-ray tester
+    /// per ray. Returns the rays kept and their entries, checking every answer.
+    fn test_node(
+        &mut self,
+        b: &Built,
+        node: usize,
+        active: u64,
+        bundle: &Bundle,
+        entry: &[f64],
+    ) -> Result<(u64, Vec<f64>), Error> {
+        let bx = self.bvh.nodes[node].bounds;
+        let mut hits = 0u64;
+        for (k, &i) in b.rays.iter().enumerate() {
+            if active >> k & 1 == 1 && self.hits_now(i, node) {
+                hits |= 1 << k;
+            }
         }
-        st.bundles += 1;
-        let all = if n == 64 { u64::MAX } else { (1u64 << n) - 1 };
-        let mut stack = vec![(0usize, all, b.bundle)];
-        while let Some((node, active, bundle)) = stack.pop() {
-            let nd = &bvh.nodes[node];
-            let bx = &nd.bounds;
-            let mut hits = 0u64;
-            for (k, &i) in b.rays.iter().enumerate() {
-                if active >> k & 1 == 1 && set.exact.hits(i, node) {
-                    hits |= 1 << k;
-                }
-            }
-            let count = active.count_ones();
-            let at = |what: &str| Error::Io(format!("node {node}: {what}"));
-            let mut single = true;
-            let mut mask = 0u64;
-            if count > 1 {
-                if let Some(path) = m.pair {
-                    st.pair_tests += 1;
-                    if hits == active || hits == 0 {
-                        st.pair_ideal += 1;
-                    }
-                    // The bundle tested stands for its active rays only when re-bounded; otherwise for
-                    // the original bundle, whose other rays may differ; check only what the answer claims
-                    // of the active rays, which is what the traversal relies on.
-                    let (all_hit, all_miss) = path.decide(&bundle, bx)?;
-                    if all_hit && hits != active {
-                        return Err(at(
-                            "the pair said \"all hit\" although an active ray misses",
-                        ));
-                    }
-                    if all_miss && hits != 0 {
-                        return Err(at("the pair said \"all miss\" although an active ray hits"));
-                    }
-                    if all_hit || all_miss {
-                        st.pair_decided += 1;
-                        single = false;
-                        mask = if all_hit { active } else { 0 };
-                    }
-                }
-            }
-            if single {
+        let at = |what: &str| Error::Io(format!("node {node}: {what}"));
+        let mut entry = entry.to_vec();
+        if active.count_ones() > 1 {
+            if let Some(path) = self.m.pair {
+                self.st.pair_tests += 1;
                 for (k, &i) in b.rays.iter().enumerate() {
-                    if active >> k & 1 == 0 {
-                        continue;
+                    if active >> k & 1 == 1 {
+                        self.out[i].pair_tests += 1;
                     }
-                    let ray = &set.rays[i];
-                    st.box_tests += 1;
-                    let truth = hits >> k & 1 == 1;
-                    let r = m.tester.test(ray, node);
-                    match (r, truth) {
-                        (Some(_), false) => {
-                            st.true_box_misses += 1;
-                            st.false_box_hits += 1;
-                        }
-                        (None, false) => st.true_box_misses += 1,
-                        (Some((lo, hi)), true) => {
-                            let s = crate::slab::reference::slab_ref(ray, bx);
-                            st.true_box_hits += 1;
-                            // Within the ray's own range: a saturated code (t = inf) is no looser there.
-                            let (lo, hi) = (lo.max(ray.t_min), hi.min(ray.t_max));
-                            st.looseness_sum +=
-                                (s.t_entry - lo).max(0.0) + (hi - s.t_exit.min(ray.t_max)).max(0.0);
-                        }
-                        (None, true) => {
-                            if m.planes == 0 {
-                                return Err(at(&format!(
-                                    "ray {i} hits the box but the slab tester culled it (false miss)"
-                                )));
-                            }
-                            st.plane_culls += 1;
-                            if let Some(&t) = bvh
-                                .subtree_tris(node)
-                                .iter()
-                                .find(|&&t| tri_hit(ray, &tris[t]).is_some())
-                            {
-                                return Err(at(&format!(
-                                    "ray {i} culled although it hits triangle {t} below"
-                                )));
-                            }
-                        }
+                }
+                if hits == active || hits == 0 {
+                    self.st.pair_ideal += 1;
+                }
+                // The bundle tested stands for its active rays only when re-bounded; otherwise for the
+                // original bundle, whose other rays may differ; check only what the answer claims of the
+                // active rays, which is what the traversal relies on.
+                let (all_hit, all_miss) = path.decide(bundle, &bx)?;
+                if all_hit && hits != active {
+                    return Err(at(
+                        "the pair said \"all hit\" although an active ray misses",
+                    ));
+                }
+                if all_miss && hits != 0 {
+                    return Err(at("the pair said \"all miss\" although an active ray hits"));
+                }
+                if all_hit || all_miss {
+                    self.st.pair_decided += 1;
+                    // The pair reports no interval: the kept rays keep their entries into the parent.
+                    return Ok((if all_hit { active } else { 0 }, entry));
+                }
+            }
+        }
+        let mut mask = 0u64;
+        for (k, &i) in b.rays.iter().enumerate() {
+            if active >> k & 1 == 0 {
+                continue;
+            }
+            let ray = self.cur[i];
+            self.st.box_tests += 1;
+            self.out[i].node_tests += 1;
+            let truth = hits >> k & 1 == 1;
+            let r = self.m.tester.test(&ray, node);
+            match (r, truth) {
+                (Some(_), false) => {
+                    self.st.true_box_misses += 1;
+                    self.st.false_box_hits += 1;
+                }
+                (None, false) => self.st.true_box_misses += 1,
+                (Some((lo, hi)), true) => {
+                    let s = crate::slab::reference::slab_ref(&ray, &bx);
+                    self.st.true_box_hits += 1;
+                    // Within the ray's own range: a saturated code (t = inf) is no looser there.
+                    let (lo, hi) = (lo.max(ray.t_min), hi.min(ray.t_max));
+                    self.st.looseness_sum +=
+                        (s.t_entry - lo).max(0.0) + (hi - s.t_exit.min(ray.t_max)).max(0.0);
+                }
+                (None, true) => {
+                    if self.m.planes == 0 {
+                        return Err(at(&format!(
+                            "ray {i} hits the box but the slab tester culled it (false miss)"
+                        )));
                     }
-                    if r.is_some() {
-                        mask |= 1 << k;
+                    self.st.plane_culls += 1;
+                    if let Some(&t) = self
+                        .bvh
+                        .subtree_tris(node)
+                        .iter()
+                        .find(|&&t| tri_hit(&ray, &self.tris[t]).is_some())
+                    {
+                        return Err(at(&format!(
+                            "ray {i} culled although it hits triangle {t} below"
+                        )));
+                    }
+                }
+            }
+            if let Some((lo, _)) = r {
+                mask |= 1 << k;
+                entry[k] = lo;
+            }
+        }
+        Ok((mask, entry))
+    }
+
+    /// Tests the triangles of leaf `node` for the rays in `mask`, as the mode says.
+    fn leaf(&mut self, b: &Built, node: usize, mask: u64) {
+        for (k, &i) in b.rays.iter().enumerate() {
+            if mask >> k & 1 == 0 {
+                continue;
+            }
+            self.st.leaf_visits += 1;
+            let l = self.set.leaf_hit(self.bvh, self.tris, i, node);
+            let tested = match (self.m.mode, l.first) {
+                // Any hit stops at the first triangle it hits.
+                (Mode::Any, Some(p)) => p + 1,
+                _ => self.bvh.leaf_tris(node).len(),
+            } as u64;
+            self.st.tri_tests += tested;
+            self.out[i].tri_tests += tested;
+            let Some((ti, t)) = l.closest else { continue };
+            match self.m.mode {
+                Mode::Any => {
+                    self.done[i] = true;
+                    self.out[i].hit = Some((ti, t));
+                }
+                Mode::Closest | Mode::All => {
+                    if better(&t, ti, &self.out[i].hit) {
+                        if self.m.mode == Mode::Closest {
+                            // Rounded up, so nothing at or before the hit is cut off.
+                            self.cur[i].t_max =
+                                crate::exact::round_up(&t).min(self.set.rays[i].t_max);
+                        }
+                        self.out[i].hit = Some((ti, t));
+                    }
+                }
+            }
+        }
+    }
+
+    /// One bundle from the root down.
+    fn bundle(&mut self, b: &Built) -> Result<(), Error> {
+        let n = b.rays.len();
+        let all = if n == 64 { u64::MAX } else { (1u64 << n) - 1 };
+        let start: Vec<f64> = b.rays.iter().map(|&i| self.cur[i].t_min).collect();
+        let (mask, entry) = self.test_node(b, 0, all, &b.bundle, &start)?;
+        let mut stack = vec![Pending {
+            node: 0,
+            mask,
+            bundle: b.bundle,
+            entry,
+        }];
+        while let Some(p) = stack.pop() {
+            let mut mask = p.mask;
+            for (k, &i) in b.rays.iter().enumerate() {
+                if mask >> k & 1 == 0 {
+                    continue;
+                }
+                let drop = match self.m.mode {
+                    Mode::Any => self.done[i],
+                    Mode::Closest => p.entry[k] > self.cur[i].t_max,
+                    Mode::All => false,
+                };
+                if drop {
+                    mask &= !(1 << k);
+                    if self.m.mode == Mode::Closest {
+                        self.st.entry_skips += 1;
                     }
                 }
             }
             if mask == 0 {
                 continue;
             }
-            match nd.kind {
-                NodeKind::Leaf { .. } => {
-                    for (k, &i) in b.rays.iter().enumerate() {
-                        if mask >> k & 1 == 0 {
-                            continue;
-                        }
-                        st.leaf_visits += 1;
-                        st.tri_tests += bvh.leaf_tris(node).len() as u64;
-                        if let Some((ti, t)) = set.leaf_hit(bvh, tris, i, node) {
-                            if better(&t, ti, &best[i]) {
-                                best[i] = Some((ti, t));
-                            }
-                        }
-                    }
-                }
+            match self.bvh.nodes[p.node].kind {
+                NodeKind::Leaf { .. } => self.leaf(b, p.node, mask),
                 NodeKind::Inner { left, right } => {
-                    let next = if m.rebound && mask != active {
+                    let shrunk = b
+                        .rays
+                        .iter()
+                        .any(|&i| self.cur[i].t_max < self.set.rays[i].t_max);
+                    let next = if self.m.rebound && (mask != p.mask || mask != all || shrunk) {
                         let kept: Vec<Ray> = b
                             .rays
                             .iter()
                             .enumerate()
                             .filter(|(k, _)| mask >> k & 1 == 1)
-                            .map(|(_, &i)| set.rays[i])
+                            .map(|(_, &i)| self.cur[i])
                             .collect();
                         Bundle::around(&kept)?
                     } else {
-                        bundle
+                        p.bundle
                     };
-                    stack.push((right, mask, next));
-                    stack.push((left, mask, next));
+                    let (lm, le) = self.test_node(b, left, mask, &next, &p.entry)?;
+                    let (rm, re) = self.test_node(b, right, mask, &next, &p.entry)?;
+                    // The bundle's entry into a child: the least entry of its kept rays.
+                    let key = |m: u64, e: &[f64]| {
+                        (0..n)
+                            .filter(|k| m >> k & 1 == 1)
+                            .map(|k| e[k])
+                            .fold(f64::INFINITY, f64::min)
+                    };
+                    let (lk, rk) = (key(lm, &le), key(rm, &re));
+                    let l = Pending {
+                        node: left,
+                        mask: lm,
+                        bundle: next,
+                        entry: le,
+                    };
+                    let r = Pending {
+                        node: right,
+                        mask: rm,
+                        bundle: next,
+                        entry: re,
+                    };
+                    // The far child first on the stack, so the near one is popped first (ties: left).
+                    let (near, far) = if rk < lk { (r, l) } else { (l, r) };
+                    for c in [far, near] {
+                        if c.mask != 0 {
+                            stack.push(c);
+                        }
+                    }
                 }
             }
         }
+        Ok(())
+    }
+}
+
+/// [`traverse`], also returning each ray's result and work (indexed as `set.rays`; rays in no bundle
+/// keep the default).
+pub fn traverse_rays(
+    bvh: &Bvh,
+    tris: &[Triangle],
+    set: &mut RaySet,
+    bundles: &[Built],
+    m: &mut Machine,
+    mut progress: impl FnMut(),
+) -> Result<(SceneStats, Vec<RayResult>), Error> {
+    let nr = set.rays.len();
+    let cur = set.rays.to_vec();
+    let mut w = Walk {
+        bvh,
+        tris,
+        set,
+        m,
+        st: SceneStats::default(),
+        cur,
+        done: vec![false; nr],
+        out: vec![RayResult::default(); nr],
+    };
+    let mut reached = vec![false; nr];
+    for b in bundles {
+        let n = b.rays.len();
+        if n == 0 || n > 64 {
+            return Err(Error::Io(format!("a bundle of {n} rays: 1..=64 expected")));
+        }
+        if let Some(&i) = b.rays.iter().find(|&&i| i >= nr) {
+            return Err(Error::Io(format!(
+                "a bundle names ray {i} of a set of {nr}"
+            )));
+        }
+        w.st.bundles += 1;
+        w.bundle(b)?;
         for &i in &b.rays {
             reached[i] = true;
         }
         progress();
     }
-    for (i, (got, want)) in best.iter().zip(&set.closest).enumerate() {
+    let mode = w.m.mode;
+    let (mut st, out) = (w.st, w.out);
+    for (i, (got, want)) in out.iter().zip(&w.set.closest).enumerate() {
         if !reached[i] {
             continue;
         }
         st.rays += 1;
-        if got.is_some() {
+        if got.hit.is_some() {
             st.hits += 1;
         }
-        if got != want {
+        let wrong = match mode {
+            Mode::Any => got.hit.is_some() != want.is_some(),
+            Mode::Closest | Mode::All => got.hit != *want,
+        };
+        if wrong {
             return Err(Error::Io(format!(
-                "ray {i}: closest hit {:?} differs from the exact reference {:?}",
-                got.as_ref().map(|h| h.0),
+                "ray {i} ({} hit): found {:?}, the exact reference {:?}",
+                mode.name(),
+                got.hit.as_ref().map(|h| h.0),
                 want.as_ref().map(|h| h.0)
             )));
         }
     }
-    Ok(st)
+    Ok((st, out))
 }
 
 #[cfg(test)]
@@ -560,6 +825,7 @@ mod tests {
                 planes: 0,
                 pair: None,
                 rebound: false,
+                mode: Mode::All,
             },
             || {},
         )
@@ -593,6 +859,7 @@ mod tests {
                     planes: 0,
                     pair,
                     rebound: true,
+                    mode: Mode::All,
                 },
                 || {},
             )
@@ -635,6 +902,7 @@ mod tests {
                     planes,
                     pair: None,
                     rebound: false,
+                    mode: Mode::All,
                 },
                 || {},
             )
@@ -647,5 +915,143 @@ mod tests {
         assert!(e.contains("culled although it hits"), "{e}");
         let e = run(0);
         assert!(e.contains("false miss"), "{e}");
+    }
+
+    /// Runs `t` over `rays` (tiles of `b`) in `mode`, on the K-plane machine; the traversal's own checks
+    /// (every closest hit, every any-hit verdict) must pass.
+    fn run_mode(
+        bvh: &Bvh,
+        tris: &[Triangle],
+        rays: &[Ray],
+        t: &mut dyn NodeTester,
+        k: usize,
+        pair: Option<&BundlePath>,
+        b: usize,
+        mode: Mode,
+    ) -> Result<(SceneStats, Vec<RayResult>), Error> {
+        let mut set = RaySet::new(bvh, tris, rays);
+        let built = if b == 1 {
+            (0..rays.len())
+                .map(|i| Built {
+                    rays: vec![i],
+                    bundle: Bundle::around(&rays[i..=i]).unwrap(),
+                })
+                .collect()
+        } else {
+            tiles(rays, 16, 12, b).unwrap()
+        };
+        let mut m = Machine {
+            tester: t,
+            planes: k,
+            pair,
+            rebound: true,
+            mode,
+        };
+        traverse_rays(bvh, tris, &mut set, &built, &mut m, || {})
+    }
+
+    /// Closest hit finds every ray's closest hit with fewer triangle tests than all hits, skipping nodes
+    /// by entry; any hit finds every verdict with fewer still on shadow rays; for the exact tester, a fixed
+    /// format and bundles. Per-ray work adds up to the totals.
+    #[test]
+    fn closest_and_any_hit_find_the_reference_with_less_work() {
+        let (sc, bvh, rays, map) = setup();
+        let cf = CullFixFormat::over(FixFormat::b8());
+        let pair = BundlePath::Fix(BundleFixFormat::over(FixFormat::b8()).unwrap(), map.clone());
+        for b in [1, 4] {
+            let mut ex = ExactTester::new(&bvh, &[], 0);
+            let mut fx = FixTester::new(cf, map.clone(), &bvh, &sc.tris, &[], 0).unwrap();
+            let testers: [&mut dyn NodeTester; 2] = [&mut ex, &mut fx];
+            for t in testers {
+                let p = (b > 1).then_some(&pair);
+                let (all, _) = run_mode(&bvh, &sc.tris, &rays, t, 0, p, b, Mode::All).unwrap();
+                let (cl, per) = run_mode(&bvh, &sc.tris, &rays, t, 0, p, b, Mode::Closest).unwrap();
+                let (any, _) = run_mode(&bvh, &sc.tris, &rays, t, 0, p, b, Mode::Any).unwrap();
+                assert_eq!((cl.hits, any.hits), (all.hits, all.hits));
+                assert!(cl.tri_tests < all.tri_tests, "B{b}: {cl:?} {all:?}");
+                assert!(cl.entry_skips > 0 && all.entry_skips == 0, "B{b}: {cl:?}");
+                assert!(any.tri_tests < cl.tri_tests, "B{b}: {any:?} {cl:?}");
+                let sum = |f: fn(&RayResult) -> u64| per.iter().map(f).sum::<u64>();
+                assert_eq!(sum(|r| r.tri_tests), cl.tri_tests);
+                assert_eq!(sum(|r| r.node_tests), cl.box_tests);
+                if b == 1 {
+                    assert_eq!(cl.pair_tests, 0);
+                } else {
+                    assert!(sum(|r| r.pair_tests) >= cl.pair_tests && cl.pair_tests > 0);
+                }
+            }
+        }
+    }
+
+    /// A tester whose entry lies beyond the box (but that culls nothing) loses closest hits in closest-hit
+    /// mode, and the traversal says so; in all-hits mode the entry is never used and it passes.
+    #[test]
+    fn a_late_entry_loses_closest_hits_and_is_an_error() {
+        struct Late<'a>(ExactTester<'a>);
+        impl NodeTester for Late<'_> {
+            fn test(&mut self, r: &Ray, node: usize) -> Option<(f64, f64)> {
+                self.0.test(r, node).map(|(_, hi)| (hi, hi))
+            }
+        }
+        let sc = scene::by_name("mesh", 1, None).unwrap();
+        let bvh = Bvh::build(&sc.tris, 4).unwrap();
+        let rays = scene::primary_rays(&sc, 32, 24);
+        let mut late = Late(ExactTester::new(&bvh, &[], 0));
+        assert!(run_mode(&bvh, &sc.tris, &rays, &mut late, 0, None, 1, Mode::All).is_ok());
+        let e = run_mode(&bvh, &sc.tris, &rays, &mut late, 0, None, 1, Mode::Closest)
+            .unwrap_err()
+            .to_string();
+        assert!(
+            e.contains("closest hit") && e.contains("exact reference"),
+            "{e}"
+        );
+    }
+
+    /// With a format's culls and the exact intervals, closest hit does no more node tests than the format
+    /// alone; with planes' culls and the slab's entry, no fewer than with the planes' own entry.
+    #[test]
+    fn exact_intervals_save_work_and_plane_entries_are_no_worse_than_the_slab_entry() {
+        let (sc, bvh, rays, map) = setup();
+        let planes = crate::plane::generate::generate(&bvh, &sc.tris, 1).unwrap();
+        let cf = CullFixFormat::over(FixFormat::b8());
+        let mut fx = FixTester::new(cf, map.clone(), &bvh, &sc.tris, &planes, 1).unwrap();
+        let mut slab = FixTester::new(cf, map.clone(), &bvh, &sc.tris, &planes, 0).unwrap();
+        let mut ex = ExactTester::new(&bvh, &planes, 1);
+        let run = |t: &mut dyn NodeTester| {
+            run_mode(&bvh, &sc.tris, &rays, t, 1, None, 1, Mode::Closest)
+                .unwrap()
+                .0
+        };
+        let own = run(&mut fx);
+        let exact_iv = run(&mut Intervals {
+            cull: &mut fx,
+            interval: &mut ex,
+        });
+        let slab_iv = run(&mut Intervals {
+            cull: &mut fx,
+            interval: &mut slab,
+        });
+        let work = |s: &SceneStats| (s.box_tests, s.tri_tests, s.entry_skips);
+        eprintln!(
+            "(node tests, triangle tests, entry skips): b8 K1 {:?}, exact intervals {:?}, slab entry {:?}",
+            work(&own),
+            work(&exact_iv),
+            work(&slab_iv)
+        );
+        assert!(exact_iv.box_tests <= own.box_tests && exact_iv.tri_tests < own.tri_tests);
+        assert!(slab_iv.box_tests >= own.box_tests && slab_iv.tri_tests >= own.tri_tests);
+    }
+
+    #[test]
+    fn modes_parse_and_default_per_ray_set() {
+        for m in [Mode::Closest, Mode::Any, Mode::All] {
+            assert_eq!(Mode::parse(m.name()).unwrap(), m);
+        }
+        assert!(Mode::parse("first")
+            .unwrap_err()
+            .to_string()
+            .contains("`first`"));
+        assert_eq!(Mode::default_for("shadow"), Mode::Any);
+        assert_eq!(Mode::default_for("bounce"), Mode::Closest);
     }
 }
