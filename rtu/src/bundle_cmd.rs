@@ -19,7 +19,7 @@ use std::path::Path;
 /// Arguments of `rtu bundle-scenes`.
 #[derive(clap::Args, Debug)]
 pub struct Args {
-    /// Built-in scenes, comma-separated (room, grass, mesh, soup).
+    /// Scenes, comma-separated: built-in names (room, grass, mesh, soup) or OBJ files (`*.obj`).
     #[arg(long, default_value = "room,grass")]
     scenes: String,
     /// Image width and height of the primary rays.
@@ -182,8 +182,7 @@ pub fn scenes(a: &Args, out: &Path) -> Result<String, String> {
     );
     let mut recs: Vec<Rec> = vec![];
     for name in &names {
-        let sc =
-            golden::scene::tri_scene::by_name(name, a.seed, None).map_err(|e| e.to_string())?;
+        let sc = crate::sweep_cmd::load_scene(name, a.seed)?;
         let bvh = Bvh::build(&sc.tris, 4).map_err(|e| e.to_string())?;
         let prim = golden::scene::tri_scene::primary_rays(&sc, a.width, a.height);
         let (hits, _) = trace(&bvh, &sc.tris, &prim, &mut AabbOnly::new(&bvh));

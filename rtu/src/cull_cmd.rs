@@ -174,7 +174,7 @@ pub fn scenes(
     let mut check: Vec<(u64, u64, String)> = vec![];
     let mut table = String::from("| scene | rays | datapath | format | K | normals | bytes/node | triangle tests | saved vs same format K=0 | saved vs exact AABB | closest hits differing |\n|---|---|---|---|---|---|---|---|---|---|---|\n");
     for name in names {
-        let sc = golden::scene::tri_scene::by_name(name, 1, None).map_err(|e| e.to_string())?;
+        let sc = crate::sweep_cmd::load_scene(name, 1)?;
         let bvh = Bvh::build(&sc.tris, 4).map_err(|e| e.to_string())?;
         let prim = golden::scene::tri_scene::primary_rays(&sc, w, h);
         let (hits0, _) = trace(&bvh, &sc.tris, &prim, &mut AabbOnly::new(&bvh));

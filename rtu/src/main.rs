@@ -18,6 +18,7 @@ mod scene;
 mod stability_cmd;
 mod sweep_cmd;
 mod synth;
+mod trace_cmd;
 
 use clap::{Parser, Subcommand};
 use std::path::PathBuf;
@@ -138,11 +139,14 @@ enum Cmd {
     /// one traversal model, against the exact machine, joined with the synthesis table; writes sweep.csv,
     /// sweep.md and per scene two SVG charts with the Pareto front.
     Sweep(sweep_cmd::Args),
+    /// Per-ray results of one configuration on one scene (ray, closest triangle and its OBJ line, t, the
+    /// work it took) as CSV, every hit checked against brute force: compare with another renderer.
+    Trace(trace_cmd::Args),
     /// Cull planes on scenes: triangle tests saved against AABB-only traversal (the same format with no
     /// planes, and exact), with each node's own normals or normals shared by siblings, bytes per node,
     /// closest hits compared with the exact reference.
     CullScenes {
-        /// Scenes, comma separated.
+        /// Scenes, comma-separated: built-in names (grass, room, mesh, soup) or OBJ files (`*.obj`).
         #[arg(long, default_value = "grass,room,mesh")]
         scenes: String,
         #[arg(long, default_value = "1,2,4,8")]
@@ -310,6 +314,7 @@ fn main() -> ExitCode {
         Cmd::Formal(a) => formal_cmd::run(&a, &cli.out).map(|t| print!("{t}")),
         Cmd::Stability => stability_cmd::run(&cli.out).map(|t| print!("{t}")),
         Cmd::Sweep(a) => sweep_cmd::run(&a, &cli.out).map(|t| print!("{t}")),
+        Cmd::Trace(a) => trace_cmd::run(&a, &cli.out).map(|t| print!("{t}")),
         Cmd::BundleCampaign(a) => bundle_cmd::campaign(&a, &cli.out).map(|t| print!("{t}")),
         Cmd::CullScenes {
             scenes,

@@ -383,7 +383,7 @@ pub fn modules(f: &Format, k: usize, b: usize) -> Result<Vec<String>, String> {
 
 /// The bundles of a ray set for bundle size `b`: single rays, square tiles of the image (primary), or
 /// the builder's bundles (secondary; direction spread 0.2, origin spread a tenth of the diagonal).
-fn bundles(
+pub fn bundles(
     set: &str,
     rays: &[Ray],
     b: usize,

@@ -319,3 +319,117 @@ fn all_hits_mode_makes_the_interval_irrelevant() {
     }
     std::fs::remove_dir_all(&dir).unwrap();
 }
+
+/// `rtu trace` on an OBJ file: a row per ray of every set, the closest triangle's OBJ line, the hit equal
+/// to brute force's in closest-hit mode and the verdict in any-hit mode, the tester's entry into the
+/// hit's leaf no later than the hit; `cull-scenes` and `bundle-scenes` take the same file.
+#[test]
+fn trace_writes_per_ray_results_and_every_scene_command_takes_obj() {
+    let dir = tmp("trace");
+    // A unit quad (line 6, two triangles) in front of a larger triangle (line 10) behind it.
+    let obj = dir.join("two.obj");
+    std::fs::write(
+        &obj,
+        "# test\nv 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\nf 1 2 3 4\nv -1 -1 -1\nv 2 -1 -1\nv 0.5 2 -1\nf 5 6 7\n",
+    )
+    .unwrap();
+    let out = dir.join("out");
+    let csv = dir.join("t.csv");
+    let o = rtu(&[
+        "--out",
+        out.to_str().unwrap(),
+        "trace",
+        "--scene",
+        obj.to_str().unwrap(),
+        "--format",
+        "b8",
+        "--k",
+        "1",
+        "--width",
+        "8",
+        "--height",
+        "6",
+        "--csv",
+        csv.to_str().unwrap(),
+    ]);
+    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    let r = rows(&csv);
+    let primary: Vec<_> = r.iter().filter(|x| x["set"] == "primary").collect();
+    assert_eq!(primary.len(), 48);
+    assert!(r.iter().any(|x| x["set"] == "shadow" && x["mode"] == "any"));
+    let mut lines = std::collections::HashSet::new();
+    for row in &r {
+        let num = |k: &str| row[k].parse::<f64>().unwrap();
+        assert!(num("node_tests") >= 1.0, "{row:?}");
+        if row["mode"] == "closest" {
+            assert_eq!(
+                (&row["tri"], &row["t"]),
+                (&row["ref_tri"], &row["ref_t"]),
+                "{row:?}"
+            );
+        } else {
+            assert_eq!(row["hit"] == "true", !row["ref_tri"].is_empty(), "{row:?}");
+        }
+        if row["hit"] == "true" {
+            assert!(
+                num("t_entry") <= num("t") * (1.0 + 1e-12) + 1e-300,
+                "{row:?}"
+            );
+            let line = &row["obj_line"];
+            let tri: usize = row["tri"].parse().unwrap();
+            assert_eq!(line, if tri < 2 { "6" } else { "10" }, "{row:?}");
+            lines.insert(line.clone());
+        }
+    }
+    assert!(lines.contains("6"), "the camera sees the quad: {lines:?}");
+    for args in [
+        vec![
+            "cull-scenes",
+            "--k",
+            "1",
+            "--fixed",
+            "b12",
+            "--float",
+            "fp16",
+        ],
+        vec!["bundle-scenes"],
+    ] {
+        let mut a = vec!["--out", out.to_str().unwrap()];
+        a.extend(args.iter());
+        a.extend([
+            "--scenes",
+            obj.to_str().unwrap(),
+            "--width",
+            "8",
+            "--height",
+            "6",
+        ]);
+        let o = rtu(&a);
+        let text = String::from_utf8_lossy(&o.stdout);
+        assert!(
+            o.status.success() && text.contains("two.obj"),
+            "{args:?}: {}",
+            String::from_utf8_lossy(&o.stderr)
+        );
+    }
+    for (args, want) in [
+        (vec!["trace", "--format", "b7"], "--format `b7`"),
+        (vec!["trace", "--scene", "attic"], "unknown scene `attic`"),
+        (vec!["trace", "--bundle", "3"], "--bundle 3"),
+        (
+            vec!["cull-scenes", "--scenes", "/nonexistent.obj"],
+            "/nonexistent.obj",
+        ),
+        (
+            vec!["bundle-scenes", "--scenes", "attic"],
+            "unknown scene `attic`",
+        ),
+    ] {
+        let mut a = vec!["--out", out.to_str().unwrap()];
+        a.extend(args.iter());
+        let r = rtu(&a);
+        let err = String::from_utf8_lossy(&r.stderr);
+        assert!(!r.status.success() && err.contains(want), "{args:?}: {err}");
+    }
+    std::fs::remove_dir_all(&dir).unwrap();
+}

@@ -54,6 +54,9 @@ pub struct TriScene {
     pub tris: Vec<Triangle>,
     pub camera: Camera,
     pub light: DVec3,
+    /// For a scene read from OBJ, the line of the `f` statement each triangle comes from (a polygon
+    /// gives several, fanned from its first vertex); empty for the built-in scenes.
+    pub face_lines: Vec<usize>,
 }
 
 impl TriScene {
@@ -184,6 +187,7 @@ pub fn room(seed: u64, boxes: usize) -> TriScene {
             fov_deg: 70.0,
         },
         light: DVec3::new(2.0, 7.5, 3.0),
+        face_lines: Vec::new(),
     }
 }
 
@@ -228,6 +232,7 @@ pub fn grass(seed: u64, blades: usize) -> TriScene {
             fov_deg: 60.0,
         },
         light: DVec3::new(-5.0, 20.0, 8.0),
+        face_lines: Vec::new(),
     }
 }
 
@@ -272,6 +277,7 @@ pub fn mesh(seed: u64, n: usize) -> TriScene {
             fov_deg: 50.0,
         },
         light: DVec3::new(6.0, 10.0, 10.0),
+        face_lines: Vec::new(),
     }
 }
 
@@ -298,6 +304,7 @@ pub fn soup(seed: u64, n: usize) -> TriScene {
             fov_deg: 55.0,
         },
         light: DVec3::new(15.0, 20.0, 20.0),
+        face_lines: Vec::new(),
     }
 }
 
@@ -530,6 +537,7 @@ pub fn parse_obj(text: &str, source_name: &str) -> Result<TriScene, Error> {
         }
     }
     let mut tris = Vec::new();
+    let mut face_lines = Vec::new();
     for (line_no, refs) in faces {
         let mut idx = Vec::with_capacity(refs.len());
         for (i, seen) in refs {
@@ -558,6 +566,7 @@ pub fn parse_obj(text: &str, source_name: &str) -> Result<TriScene, Error> {
                 verts[idx[j]],
                 verts[idx[j + 1]],
             ));
+            face_lines.push(line_no);
         }
     }
     if tris.is_empty() {
@@ -580,6 +589,7 @@ pub fn parse_obj(text: &str, source_name: &str) -> Result<TriScene, Error> {
             fov_deg: 50.0,
         },
         light: DVec3::ZERO,
+        face_lines,
     };
     let b = scene.bounds();
     let c = (b.min + b.max) * 0.5;
@@ -689,6 +699,7 @@ mod tests {
             )],
             camera: room(1, 1).camera,
             light: DVec3::new(0.0, 5.0, 0.0),
+            face_lines: Vec::new(),
         };
         let p =
             vec![Ray::new(DVec3::new(0.0, 2.0, 0.0), -DVec3::Y, 0.0, f64::INFINITY).unwrap(); 50];
@@ -716,6 +727,8 @@ mod tests {
         assert_eq!(s.tris.len(), 3);
         assert_eq!(s.tris[2].v[0], DVec3::new(0.0, 0.0, 2.0));
         assert_eq!(s.bounds().max, DVec3::new(1.0, 1.0, 2.0));
+        // The quad on line 7 gives two triangles, the triangle on line 9 one.
+        assert_eq!(s.face_lines, vec![7, 7, 9]);
     }
 
     #[test]
