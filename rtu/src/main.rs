@@ -48,6 +48,11 @@ enum Cmd {
         /// Image height in rays.
         #[arg(long, default_value_t = 32)]
         height: usize,
+        /// Instead of the default room of boxes, a triangle scene: a built-in name (room, grass, mesh,
+        /// soup) or an OBJ file; the boxes are its BVH's first 48 nodes, the rays its camera's, and the
+        /// small sweep runs on it.
+        #[arg(long)]
+        scene: Option<String>,
     },
     /// Write one Verilog file per block and preset configuration into <out>/verilog.
     Export,
@@ -188,10 +193,20 @@ fn main() -> ExitCode {
     let r = match cli.cmd.unwrap_or(Cmd::Scene {
         width: 48,
         height: 32,
+        scene: None,
     }) {
-        Cmd::Scene { width, height } => {
-            let scene = scene::room(width, height);
-            main_job::run(&scene, &cli.out)
+        Cmd::Scene {
+            width,
+            height,
+            scene: tri,
+        } => {
+            let scene = match &tri {
+                None => Ok(scene::room(width, height)),
+                Some(name) => sweep_cmd::load_scene(name, 1)
+                    .and_then(|ts| scene::from_tri(&ts, width, height, 48)),
+            };
+            scene
+                .and_then(|scene| main_job::run(&scene, &cli.out))
                 .map(|(rows, _)| {
                     println!("\n{}", main_job::table(&rows));
                     println!(
@@ -211,7 +226,10 @@ fn main() -> ExitCode {
                         );
                     }
                     // The small version of the sweep: speed against accuracy on the triangle room.
-                    let sweep = sweep_cmd::Args::small();
+                    let mut sweep = sweep_cmd::Args::small();
+                    if let Some(name) = &tri {
+                        sweep.scenes = name.clone();
+                    }
                     let dir = cli.out.join("sweep");
                     sweep_cmd::run(&sweep, &dir).map(|t| {
                         println!(

@@ -8,7 +8,7 @@ use rand_pcg::Pcg64;
 
 /// Boxes and the rays that test them.
 pub struct Scene {
-    pub name: &'static str,
+    pub name: String,
     pub boxes: Vec<Aabb>,
     pub rays: Vec<Ray>,
     pub width: usize,
@@ -89,10 +89,40 @@ pub fn room(width: usize, height: usize) -> Scene {
         }
     }
     Scene {
-        name: "room",
+        name: "room".into(),
         boxes,
         rays,
         width,
         height,
     }
+}
+
+/// A triangle scene (built-in or OBJ) as the main job takes it: the boxes of the first `max_boxes` nodes of
+/// its BVH (binned SAH, leaves of up to 4 triangles) in breadth-first order, the boxes a traversal tests
+/// first, and its camera's `width x height` primary rays.
+pub fn from_tri(
+    ts: &golden::scene::tri_scene::TriScene,
+    width: usize,
+    height: usize,
+    max_boxes: usize,
+) -> Result<Scene, String> {
+    let bvh = golden::scene::bvh::Bvh::build(&ts.tris, 4).map_err(|e| e.to_string())?;
+    let mut boxes = Vec::with_capacity(max_boxes);
+    let mut queue = std::collections::VecDeque::from([0usize]);
+    while let Some(n) = queue.pop_front() {
+        if boxes.len() == max_boxes {
+            break;
+        }
+        boxes.push(bvh.nodes[n].bounds);
+        if let golden::scene::bvh::NodeKind::Inner { left, right } = bvh.nodes[n].kind {
+            queue.extend([left, right]);
+        }
+    }
+    Ok(Scene {
+        name: ts.name.clone(),
+        boxes,
+        rays: golden::scene::tri_scene::primary_rays(ts, width, height),
+        width,
+        height,
+    })
 }

@@ -117,8 +117,8 @@ pub fn run(a: &Args, out: &Path) -> Result<String, String> {
         mode,
     };
     let mut csv = format!("{CSV_HEADER}\n");
-    let mut summary = format!(
-        "| set | mode | rays | hits | node tests | pair tests | triangle tests |\n|---|---|---|---|---|---|---|\n"
+    let mut summary = String::from(
+        "| set | mode | rays | hits | node tests | pair tests | triangle tests |\n|---|---|---|---|---|---|---|\n",
     );
     for (name, rays) in &p.sets {
         let mut set = RaySet::new(&p.bvh, &sc.tris, rays);

@@ -433,3 +433,30 @@ fn trace_writes_per_ray_results_and_every_scene_command_takes_obj() {
     }
     std::fs::remove_dir_all(&dir).unwrap();
 }
+
+/// The main job on a triangle scene: its BVH's first 48 boxes and its camera's rays through every
+/// preset's RTL, and the small sweep on the same scene.
+#[test]
+fn main_job_takes_a_triangle_scene() {
+    let dir = tmp("main");
+    let out = dir.join("out");
+    let o = rtu(&[
+        "--out",
+        out.to_str().unwrap(),
+        "scene",
+        "--scene",
+        "mesh",
+        "--width",
+        "8",
+        "--height",
+        "6",
+    ]);
+    let text = String::from_utf8_lossy(&o.stdout);
+    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    assert!(text.contains("scene `mesh`: 48 boxes, 48 rays"), "{text}");
+    let r = rows(&out.join("sweep").join("sweep.csv"));
+    assert!(!r.is_empty() && r.iter().all(|x| x["scene"] == "mesh"));
+    let bad = rtu(&["--out", out.to_str().unwrap(), "scene", "--scene", "attic"]);
+    assert!(String::from_utf8_lossy(&bad.stderr).contains("unknown scene `attic`"));
+    std::fs::remove_dir_all(&dir).unwrap();
+}

@@ -928,6 +928,7 @@ mod tests {
 
     /// Runs `t` over `rays` (tiles of `b`) in `mode`, on the K-plane machine; the traversal's own checks
     /// (every closest hit, every any-hit verdict) must pass.
+    #[allow(clippy::too_many_arguments)]
     fn run_mode(
         bvh: &Bvh,
         tris: &[Triangle],
@@ -966,10 +967,10 @@ mod tests {
     fn closest_and_any_hit_find_the_reference_with_less_work() {
         let (sc, bvh, rays, map) = setup();
         let cf = CullFixFormat::over(FixFormat::b8());
-        let pair = BundlePath::Fix(BundleFixFormat::over(FixFormat::b8()).unwrap(), map.clone());
+        let pair = BundlePath::Fix(BundleFixFormat::over(FixFormat::b8()).unwrap(), map);
         for b in [1, 4] {
             let mut ex = ExactTester::new(&bvh, &[], 0);
-            let mut fx = FixTester::new(cf, map.clone(), &bvh, &sc.tris, &[], 0).unwrap();
+            let mut fx = FixTester::new(cf, map, &bvh, &sc.tris, &[], 0).unwrap();
             let testers: [&mut dyn NodeTester; 2] = [&mut ex, &mut fx];
             for t in testers {
                 let p = (b > 1).then_some(&pair);
@@ -1033,8 +1034,8 @@ mod tests {
         let (sc, bvh, rays, map) = setup();
         let planes = crate::plane::generate::generate(&bvh, &sc.tris, 1).unwrap();
         let cf = CullFixFormat::over(FixFormat::b8());
-        let mut fx = FixTester::new(cf, map.clone(), &bvh, &sc.tris, &planes, 1).unwrap();
-        let mut slab = FixTester::new(cf, map.clone(), &bvh, &sc.tris, &planes, 0).unwrap();
+        let mut fx = FixTester::new(cf, map, &bvh, &sc.tris, &planes, 1).unwrap();
+        let mut slab = FixTester::new(cf, map, &bvh, &sc.tris, &planes, 0).unwrap();
         let mut ex = ExactTester::new(&bvh, &planes, 1);
         let run = |t: &mut dyn NodeTester| {
             run_mode(&bvh, &sc.tris, &rays, t, 1, None, 1, Mode::Closest)
