@@ -472,6 +472,9 @@ struct Pending {
     mask: u64,
     bundle: Bundle,
     entry: Vec<f64>,
+    /// The rays `bundle` was bounded around (all: the builder's bundle) and the value of
+    /// [`Walk::shrinks`] then: when neither has changed, re-bounding would give `bundle` again.
+    bounded: (u64, u64),
 }
 
 /// Traverses every bundle of `bundles` (indices into `set.rays`; one-ray bundles for `B = 1`) through
@@ -498,6 +501,8 @@ struct Walk<'a, 'b, 'r, 'm, 't> {
     cur: Vec<Ray>,
     /// Set when a ray is finished (any-hit mode).
     done: Vec<bool>,
+    /// How often a ray of the current bundle has had its `t_max` shrunk (closest-hit mode).
+    shrinks: u64,
     out: Vec<RayResult>,
 }
 
@@ -638,6 +643,7 @@ impl Walk<'_, '_, '_, '_, '_> {
                             // Rounded up, so nothing at or before the hit is cut off.
                             self.cur[i].t_max =
                                 crate::exact::round_up(&t).min(self.set.rays[i].t_max);
+                            self.shrinks += 1;
                         }
                         self.out[i].hit = Some((ti, t));
                         self.out[i].hit_entry = Some(entry[k]);
@@ -652,12 +658,14 @@ impl Walk<'_, '_, '_, '_, '_> {
         let n = b.rays.len();
         let all = if n == 64 { u64::MAX } else { (1u64 << n) - 1 };
         let start: Vec<f64> = b.rays.iter().map(|&i| self.cur[i].t_min).collect();
+        self.shrinks = 0;
         let (mask, entry) = self.test_node(b, 0, all, &b.bundle, &start)?;
         let mut stack = vec![Pending {
             node: 0,
             mask,
             bundle: b.bundle,
             entry,
+            bounded: (all, 0),
         }];
         while let Some(p) = stack.pop() {
             let mut mask = p.mask;
@@ -683,11 +691,8 @@ impl Walk<'_, '_, '_, '_, '_> {
             match self.bvh.nodes[p.node].kind {
                 NodeKind::Leaf { .. } => self.leaf(b, p.node, mask, &p.entry),
                 NodeKind::Inner { left, right } => {
-                    let shrunk = b
-                        .rays
-                        .iter()
-                        .any(|&i| self.cur[i].t_max < self.set.rays[i].t_max);
-                    let next = if self.m.rebound && (mask != p.mask || mask != all || shrunk) {
+                    let now = (mask, self.shrinks);
+                    let (next, bounded) = if self.m.rebound && now != p.bounded {
                         let kept: Vec<Ray> = b
                             .rays
                             .iter()
@@ -695,9 +700,9 @@ impl Walk<'_, '_, '_, '_, '_> {
                             .filter(|(k, _)| mask >> k & 1 == 1)
                             .map(|(_, &i)| self.cur[i])
                             .collect();
-                        Bundle::around(&kept)?
+                        (Bundle::around(&kept)?, now)
                     } else {
-                        p.bundle
+                        (p.bundle, p.bounded)
                     };
                     let (lm, le) = self.test_node(b, left, mask, &next, &p.entry)?;
                     let (rm, re) = self.test_node(b, right, mask, &next, &p.entry)?;
@@ -714,12 +719,14 @@ impl Walk<'_, '_, '_, '_, '_> {
                         mask: lm,
                         bundle: next,
                         entry: le,
+                        bounded,
                     };
                     let r = Pending {
                         node: right,
                         mask: rm,
                         bundle: next,
                         entry: re,
+                        bounded,
                     };
                     // The far child first on the stack, so the near one is popped first (ties: left).
                     let (near, far) = if rk < lk { (r, l) } else { (l, r) };
@@ -755,6 +762,7 @@ pub fn traverse_rays(
         st: SceneStats::default(),
         cur,
         done: vec![false; nr],
+        shrinks: 0,
         out: vec![RayResult::default(); nr],
     };
     let mut reached = vec![false; nr];
