@@ -11,9 +11,9 @@ Counts are of the core module alone: LUT4, CCU2C (carry pairs), TRELLIS_FF, MULT
 wrapper's cells (one flip-flop per core input and output bit, about one LUT4 per output bit) are
 counted separately and checked against the bits the wrapper was written with.
 The critical path is the clock-to-clock one; its start and end cells are named by the register they
-hold: the core's register as rust-hdl names it, its path in the core (`exit_q2$0`, the instance of
-the child module `<module>$exit_q2$0`; `exit_q2$0$r`, the register `r` of a cut point
-(`rtl::cut::Cut`); `mul_entry$2.p_q`, a register `p_q` inside a child; no `core.` prefix, no bit
+hold: the core's register by its plain name (rtl::export::plain_name), its path in the core
+(`exit_q2_0`, the instance of the child module `<module>_exit_q2_0`; `exit_q2_0_r`, the register `r`
+of a cut point (`rtl::cut::Cut`); `mul_entry_2.p_q`, a register `p_q` inside a child; no `core.` prefix, no bit
 index), found from the flip-flop's
 source line in core.v; `wrap_in:<port>` / `wrap_out:<port>` for the wrapper's shift-register
 flip-flop at a core input or output; `<cell type>:<name>` for a cell other than a flip-flop.
@@ -56,7 +56,7 @@ class Source:
 
     def register(self, src, net):
         """The register of a flip-flop whose `src` attribute is `core.v:LINE...`, or None.
-        In a child module `<top>$<path>`: <path>, and `.<reg>` after it when the child declares more
+        In a child module `<top>_<path>`: <path>, and `.<reg>` after it when the child declares more
         than one reg and the flip-flop's net says which. In the top module: the net's name."""
         m = re.match(r"core\.v:(\d+)\.", src)
         if not m:
@@ -66,7 +66,7 @@ class Source:
             if first <= line <= last:
                 if name == self.top:
                     return net
-                if not name.startswith(self.top + "$"):
+                if not name.startswith(self.top + "_"):
                     return None
                 path = name[len(self.top) + 1:]
                 local = net.rsplit(".", 1)[-1] if net else None
@@ -149,9 +149,9 @@ class Netlist:
         if cell["type"] == "TRELLIS_FF":
             n = self.net_name(mod, conns["Q"][0])
             if mod is self.core:
-                # Flattening keeps one name per net, often a child's input port (`mul_exit$0.a`),
+                # Flattening keeps one name per net, often a child's input port (`mul_exit_0.a`),
                 # so the register is found where the Verilog declares it: a rust-hdl register is a
-                # child module `<top>$<path>` of its own (ports d, q, clock), named <path>.
+                # child module `<top>_<path>` of its own (ports d, q, clock), named <path>.
                 r = self.source.register(cell.get("attributes", {}).get("src", ""), n)
                 if r is not None:
                     return r

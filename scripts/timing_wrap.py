@@ -17,9 +17,9 @@ nextpnr flattens the design itself, so timing is over the whole. The wrapper's r
 core port it is.
 
 The core's `clock` input is driven by `clk`. Ports are read from the top module's declarations as
-rust-hdl 0.46 writes them (`input wire  [15:0] ray_o_lo$0;`, `output reg  hit;`, optionally
-`signed`), or ANSI-style in the header. Names with `$` are written as escaped identifiers
-(`\\ray_o_lo$0 `, with the trailing space).
+the export writes them (`input wire  [15:0] ray_o_lo_0;`, `output reg  hit;`, optionally
+`signed`), or ANSI-style in the header. Names with `$` (Verilog from rust-hdl before the plain-name
+export) are written as escaped identifiers (`\\ray_o_lo$0 `, with the trailing space).
 
 Usage: scripts/timing_wrap.py CORE.v MODULE WRAP.v
   Prints one line `in_bits out_bits in_ports out_ports` on stdout (the wrapper's flip-flops are

@@ -481,8 +481,8 @@ fn min_max_mutants(p: &Proof) -> Vec<Proof> {
         p,
         "swap",
         "minimum and maximum swapped at the output",
-        "min = min_q$q;",
-        "min = max_q$q;",
+        "min = min_q_q;",
+        "min = max_q_q;",
     )]
 }
 
@@ -656,8 +656,8 @@ fn module_body<'a>(text: &'a str, name: &str) -> Option<(usize, &'a str)> {
 }
 
 /// The flip-flop module that drives `valid_out` of `module`: the register named in its
-/// `valid_out = <reg>$q`, inside a cut point's `$r` where it is one, or followed into the child whose
-/// `valid_out` it is (`valid_out = <child>$valid_out & ...`).
+/// `valid_out = <reg>_q`, inside a cut point's `_r` where it is one, or followed into the child whose
+/// `valid_out` it is (`valid_out = <child>_valid_out & ...`).
 pub fn valid_register(text: &str, module: &str) -> Result<String, String> {
     let (_, body) = module_body(text, module).ok_or_else(|| format!("no module {module}"))?;
     let rhs = body
@@ -668,15 +668,15 @@ pub fn valid_register(text: &str, module: &str) -> Result<String, String> {
         .split(|c: char| !(c.is_alphanumeric() || c == '_' || c == '$'))
         .next()
         .unwrap_or("");
-    if let Some(child) = first.strip_suffix("$valid_out") {
-        return valid_register(text, &format!("{module}${child}"));
+    if let Some(child) = first.strip_suffix("_valid_out") {
+        return valid_register(text, &format!("{module}_{child}"));
     }
     let reg = first
-        .strip_suffix("$q")
+        .strip_suffix("_q")
         .ok_or_else(|| format!("{module}: valid_out = {rhs} is not a register output"))?;
-    let name = format!("{module}${reg}");
-    if module_body(text, &format!("{name}$r")).is_some() {
-        Ok(format!("{name}$r"))
+    let name = format!("{module}_{reg}");
+    if module_body(text, &format!("{name}_r")).is_some() {
+        Ok(format!("{name}_r"))
     } else if text.contains(&format!("module {name}(d,q,clock);")) {
         Ok(name)
     } else {
@@ -731,10 +731,9 @@ pub fn pipeline_proofs(
     let mut v = vec![];
     if mutant {
         let reg = valid_register(text, module).map_err(|e| format!("mutant of {module}: {e}"))?;
-        let local = reg.strip_prefix(&format!("{module}$")).unwrap_or(&reg);
+        let local = reg.strip_prefix(&format!("{module}_")).unwrap_or(&reg);
         let what = format!(
-            "one register removed: the last valid register ({}) a wire",
-            local.replace('$', ".")
+            "one register removed: the last valid register ({local}) a wire"
         );
         let changed =
             bypass_register(text, &reg).map_err(|e| format!("mutant of {module}: {e}"))?;

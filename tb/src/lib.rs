@@ -30,6 +30,7 @@ pub mod plane;
 pub mod prop;
 pub mod rtl_sim;
 pub mod slab;
+pub mod vcd_plain;
 pub mod vcd_read;
 pub mod verilator;
 pub mod verilog_tools;

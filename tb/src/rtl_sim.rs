@@ -8,8 +8,6 @@ use rtl::slab::float::SlabFloatIo;
 use rtl::SlabIo;
 use rust_hdl::core::vcd_probe::{write_vcd_change, write_vcd_dump, write_vcd_header, VCDProbe};
 use rust_hdl::prelude::*;
-use std::fs::File;
-use std::io::BufWriter;
 use std::path::Path;
 
 /// Half a clock period in VCD time units (ps): the clock period is 10 ps.
@@ -19,7 +17,7 @@ pub const HALF_PERIOD: u64 = 5;
 pub struct SlabRtl<S: SlabIo> {
     /// The block (read its outputs for cross-simulation).
     pub uut: S,
-    vcd: Option<VCDProbe<BufWriter<File>>>,
+    vcd: Option<VCDProbe<crate::vcd_plain::VcdFile>>,
     cycle: u64,
 }
 
@@ -65,10 +63,7 @@ impl<S: SlabIo> SlabRtl<S> {
 
     /// Starts writing every signal of the block to a VCD file at `path`.
     pub fn vcd_to(mut self, path: &Path) -> std::io::Result<Self> {
-        if let Some(d) = path.parent() {
-            std::fs::create_dir_all(d)?;
-        }
-        let w = BufWriter::new(File::create(path)?);
+        let w = crate::vcd_plain::create(path)?;
         let mut v = write_vcd_header(w, &self.uut);
         v = write_vcd_dump(v, &self.uut);
         self.vcd = Some(v);

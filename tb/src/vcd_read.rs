@@ -97,3 +97,12 @@ impl Trace {
         Ok(())
     }
 }
+
+/// Whether the VCD at `path` declares the signal `name` in the block's scope `uut`.
+pub fn has_signal(path: &Path, name: &str) -> Result<bool, String> {
+    let f = std::fs::File::open(path).map_err(|e| format!("{}: {e}", path.display()))?;
+    let header = vcd::Parser::new(BufReader::new(f))
+        .parse_header()
+        .map_err(|e| format!("{}: {e}", path.display()))?;
+    Ok(header.find_var(&["uut", name]).is_some())
+}

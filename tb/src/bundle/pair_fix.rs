@@ -186,7 +186,7 @@ pub fn bundle_vectors(
     })
 }
 
-/// The value of input port `port` (a Verilog name such as `d_lo$1`) for one cycle (zero for a bubble's
+/// The value of input port `port` (a Verilog name such as `d_lo_1`) for one cycle (zero for a bubble's
 /// data).
 pub fn bundle_in_word(
     bf: &BundleFixFormat,
@@ -194,14 +194,8 @@ pub fn bundle_in_word(
     tag: u16,
     v: &Option<BundleVec>,
 ) -> Result<u64, String> {
-    let (base, idx) = match port.split_once('$') {
-        Some((b, i)) => (
-            b,
-            i.parse::<usize>()
-                .map_err(|e| format!("port {port}: {e}"))?,
-        ),
-        None => (port, 0),
-    };
+    let (base, idx) = rtl::export::split_port(port);
+    let idx = idx.unwrap_or(0);
     let Some((input, p)) = v else {
         return Ok(0);
     };

@@ -211,21 +211,15 @@ pub fn two_ray_share_vectors(
     })
 }
 
-/// The value of input port `port` (a Verilog name such as `d_lo$1`) for one cycle (zero for a bubble's
+/// The value of input port `port` (a Verilog name such as `d_lo_1`) for one cycle (zero for a bubble's
 /// data).
 pub fn bundle_float_in_word(
     port: &str,
     tag: u16,
     v: &Option<FloatBundleVec>,
 ) -> Result<u64, String> {
-    let (base, idx) = match port.split_once('$') {
-        Some((b, i)) => (
-            b,
-            i.parse::<usize>()
-                .map_err(|e| format!("port {port}: {e}"))?,
-        ),
-        None => (port, 0),
-    };
+    let (base, idx) = rtl::export::split_port(port);
+    let idx = idx.unwrap_or(0);
     let Some((input, p)) = v else {
         return Ok(0);
     };

@@ -28,8 +28,6 @@ use rtl::slab::fix::code;
 use rust_hdl::core::vcd_probe::{write_vcd_change, write_vcd_dump, write_vcd_header, VCDProbe};
 use rust_hdl::prelude::*;
 use std::collections::VecDeque;
-use std::fs::File;
-use std::io::BufWriter;
 use std::path::Path;
 use std::sync::mpsc::sync_channel;
 
@@ -39,7 +37,7 @@ pub type RayStore = [FixBundle; SPLIT_RAYS];
 /// A results processor in simulation (the direct loop of [`crate::rtl_sim`]).
 pub struct SplitRtl<S: BundleSplitIo> {
     pub uut: S,
-    vcd: Option<VCDProbe<BufWriter<File>>>,
+    vcd: Option<VCDProbe<crate::vcd_plain::VcdFile>>,
     cycle: u64,
 }
 
@@ -57,10 +55,7 @@ impl<S: BundleSplitIo> SplitRtl<S> {
 
     /// Starts writing every signal of the block to a VCD file at `path`.
     pub fn vcd_to(mut self, path: &Path) -> std::io::Result<Self> {
-        if let Some(d) = path.parent() {
-            std::fs::create_dir_all(d)?;
-        }
-        let w = BufWriter::new(File::create(path)?);
+        let w = crate::vcd_plain::create(path)?;
         let v = write_vcd_header(w, &self.uut);
         self.vcd = Some(write_vcd_dump(v, &self.uut));
         Ok(self)
@@ -519,16 +514,10 @@ pub fn run_split<S: BundleSplitIo>(
     Ok(stats)
 }
 
-/// The value of input port `port` (a Verilog name such as `ray_d_lo$1`) in one clock.
+/// The value of input port `port` (a Verilog name such as `ray_d_lo_1`) in one clock.
 pub fn split_in_word(bf: &BundleFixFormat, port: &str, input: &SplitIn) -> Result<u64, String> {
-    let (base, idx) = match port.split_once('$') {
-        Some((b, i)) => (
-            b,
-            i.parse::<usize>()
-                .map_err(|e| format!("port {port}: {e}"))?,
-        ),
-        None => (port, 0),
-    };
+    let (base, idx) = rtl::export::split_port(port);
+    let idx = idx.unwrap_or(0);
     let (g, d, t) = (
         bf.base.g as usize,
         bf.dir_bits() as usize,

@@ -145,21 +145,15 @@ impl SlabCtx for FloatFormat {
     }
 }
 
-/// The value of input port `port` (a Verilog name such as `ray_o_lo$1`) for one cycle.
+/// The value of input port `port` (a Verilog name such as `ray_o_lo_1`) for one cycle.
 pub fn in_word<C: SlabCtx>(
     ctx: &C,
     port: &str,
     tag: u16,
     v: &Option<(C::Ray, C::Box)>,
 ) -> Result<u64, String> {
-    let (base, idx) = match port.split_once('$') {
-        Some((b, i)) => (
-            b,
-            i.parse::<usize>()
-                .map_err(|e| format!("port {port}: {e}"))?,
-        ),
-        None => (port, 0),
-    };
+    let (base, idx) = rtl::export::split_port(port);
+    let idx = idx.unwrap_or(0);
     let Some((r, b)) = v else {
         return Ok(0); // a bubble: valid_in low, data don't care (driven as zero)
     };

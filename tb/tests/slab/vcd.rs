@@ -44,6 +44,9 @@ fn valid_latency<S: rtl::slab::fix::SlabFixIo>(name: &str, latency: usize) {
             .unwrap_or_else(|e| panic!("{e}"));
         assert_eq!(n, 6);
     }
+    // The ports carry the exported Verilog's plain names, never rust-hdl's `ray_o_lo$0`.
+    assert!(tb::vcd_read::has_signal(&path, "ray_o_lo_0").unwrap());
+    assert!(!tb::vcd_read::has_signal(&path, "ray_o_lo$0").unwrap());
     let trace = read_trace(&path, &["valid_in", "valid_out"]).unwrap();
     // Isolated tests: one rise each; the burst: one more rise.
     trace
