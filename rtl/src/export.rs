@@ -55,7 +55,8 @@ pub fn split_port(port: &str) -> (&str, Option<usize>) {
 
 /// `v` (Verilog as rust-hdl writes it) with every identifier that holds a `$` renamed by
 /// [`plain_name`]; system functions (`$signed`) are left alone. An error when a new name would
-/// collide with another identifier, or when a scalar port's name would read as an array element.
+/// collide with another identifier of the same module, or when a scalar port's name of the top module
+/// would read as an array element.
 pub fn plain_verilog(v: &str) -> Result<String, String> {
     use std::collections::{BTreeMap, BTreeSet};
     let mut out = String::with_capacity(v.len());
@@ -76,6 +77,13 @@ pub fn plain_verilog(v: &str) -> Result<String, String> {
                 i += 1;
             }
             let id = &v[start..i];
+            if id == "module" {
+                // A new module: a new scope for the collision check (module names are renamed the
+                // same way everywhere, so they cannot collide with one another unless identical).
+                check_scope(&plain, &renamed)?;
+                plain.clear();
+                renamed.clear();
+            }
             if id.contains('$') {
                 let p = plain_name(id);
                 out += &p;
@@ -101,9 +109,7 @@ pub fn plain_verilog(v: &str) -> Result<String, String> {
             i += ch.len_utf8();
         }
     }
-    if let Some((p, id)) = renamed.iter().find(|(p, _)| plain.contains(p.as_str())) {
-        return Err(format!("{id} would be named {p}, which is already an identifier"));
-    }
+    check_scope(&plain, &renamed)?;
     // The top module's ports: a scalar must not look like an element of an array port.
     if let Some(h) = v.find("module ") {
         let header = &v[h..];
@@ -119,6 +125,19 @@ pub fn plain_verilog(v: &str) -> Result<String, String> {
         }
     }
     Ok(out)
+}
+
+/// The collision check of one module's identifiers: no renamed identifier may equal a plain one.
+fn check_scope(
+    plain: &std::collections::BTreeSet<&str>,
+    renamed: &std::collections::BTreeMap<String, &str>,
+) -> Result<(), String> {
+    match renamed.iter().find(|(p, _)| plain.contains(p.as_str())) {
+        Some((p, id)) => Err(format!(
+            "{id} would be named {p}, which is already an identifier of the same module"
+        )),
+        None => Ok(()),
+    }
 }
 
 /// Module name of the default (4-clock) fixed slab tester for a format.
@@ -478,6 +497,14 @@ mod plain_tests {
     fn a_collision_is_an_error_naming_both() {
         let e = plain_verilog("module top(a$0,a_0);\nendmodule\n").unwrap_err();
         assert!(e.contains("a$0") && e.contains("a_0"), "{e}");
+    }
+
+    #[test]
+    fn names_in_different_modules_do_not_collide() {
+        let v = "module top(a);\n  wire r$q;\nendmodule\nmodule top$u(b);\n  wire r_q;\nendmodule\n";
+        assert!(plain_verilog(v).is_ok());
+        let e = plain_verilog("module top(a);\n  wire r$q;\n  wire r_q;\nendmodule\n").unwrap_err();
+        assert!(e.contains("r$q"), "{e}");
     }
 
     #[test]
