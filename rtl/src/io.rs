@@ -15,6 +15,9 @@ pub trait SlabIo: Block {
     const LATENCY: usize;
     /// Sets the clock input.
     fn set_clock(&mut self, high: bool);
+    /// Sets the synchronous reset input `rst`: high at a clock edge, every valid bit of the pipeline
+    /// is cleared, so no test in flight leaves; data registers keep their values.
+    fn set_reset(&mut self, on: bool);
     /// Drives one test: `None` drives a bubble (`valid_in` low).
     fn drive(&mut self, test: Option<(u16, &Self::Ray, &Self::Box)>);
     /// Reads the outputs: `Some((tag, result))` when `valid_out` is high.

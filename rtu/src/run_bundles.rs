@@ -111,11 +111,13 @@ fn run_rtl<S: BundleSplitIo>(
             dut.step(&SplitIn {
                 write: Some((a, *r)),
                 start: None,
+                reset: false,
             });
         }
         let mut out = dut.step(&SplitIn {
             write: None,
             start: Some(job),
+            reset: false,
         });
         let mut clocks = 1;
         while !out.done {

@@ -704,8 +704,10 @@ pub fn bypass_register(text: &str, name: &str) -> Result<String, String> {
 }
 
 /// The pipeline proofs of one exported tester of latency `lat`: `valid_out` is `valid_in` delayed by
-/// `lat` clocks, and `tag_out` the delayed `tag_in` whenever it is valid, by k-induction; its data
-/// inputs are free in every clock. With `mutant`, also the tester with one valid register bypassed.
+/// `lat` clocks and cleared by the synchronous reset `rst` in any of those clocks, and `tag_out` the
+/// delayed `tag_in` whenever it is valid, by k-induction; `rst` and the data inputs are free in every
+/// clock. With `mutant`, also the tester with one valid register bypassed, and the tester whose last
+/// valid registers ignore `rst`.
 pub fn pipeline_proofs(
     module: &str,
     text: &str,
@@ -716,7 +718,7 @@ pub fn pipeline_proofs(
     let p = Proof {
         name: format!("pipe_{module}"),
         property: format!(
-            "latency {lat}: valid_out = valid_in and tag_out = tag_in {lat} clocks earlier"
+            "latency {lat}: valid_out = valid_in {lat} clocks earlier unless rst was high in one of those clocks, tag_out = tag_in then"
         ),
         module: module.into(),
         format: module.into(),
@@ -738,9 +740,68 @@ pub fn pipeline_proofs(
         let changed =
             bypass_register(text, &reg).map_err(|e| format!("mutant of {module}: {e}"))?;
         v.push(mutant_with(&p, "reg", &what, changed));
+        let sites = valid_sites(text, module).map_err(|e| format!("mutant of {module}: {e}"))?;
+        let mut changed = text.to_string();
+        for (owner, reg) in &sites {
+            changed = ignore_reset(&changed, owner, reg)
+                .map_err(|e| format!("mutant of {module}: {e}"))?;
+        }
+        let names: Vec<String> = sites
+            .iter()
+            .map(|(o, r)| match o.strip_prefix(&format!("{module}_")) {
+                Some(child) => format!("{child}.{r}"),
+                None => r.clone(),
+            })
+            .collect();
+        let what = format!(
+            "reset ignored by the last valid register ({})",
+            names.join(", ")
+        );
+        v.push(mutant_with(&p, "rst", &what, changed));
     }
     v.insert(0, p);
     Ok(v)
+}
+
+/// The last valid registers of `module`, as `(module that assigns its input, register)`: the
+/// registers named in its `valid_out = <reg>_q`, followed into every child whose `valid_out` it ANDs
+/// (`valid_out = <a>_valid_out & <b>_valid_out`).
+pub fn valid_sites(text: &str, module: &str) -> Result<Vec<(String, String)>, String> {
+    let (_, body) = module_body(text, module).ok_or_else(|| format!("no module {module}"))?;
+    let rhs = body
+        .lines()
+        .find_map(|l| l.trim().strip_prefix("valid_out = "))
+        .ok_or_else(|| format!("{module} does not assign valid_out"))?;
+    let mut v = vec![];
+    for term in rhs.trim_end_matches(';').split('&').map(str::trim) {
+        if let Some(child) = term.strip_suffix("_valid_out") {
+            v.extend(valid_sites(text, &format!("{module}_{child}"))?);
+        } else if let Some(reg) = term.strip_suffix("_q") {
+            v.push((module.to_string(), reg.to_string()));
+        } else {
+            return Err(format!("{module}: valid_out = {rhs} is not a register output"));
+        }
+    }
+    Ok(v)
+}
+
+/// `text` with the reset gate of register `reg`'s input in module `owner` removed (its last
+/// assignment `<reg>_d = x & ~rst;` becomes `<reg>_d = x;`).
+pub fn ignore_reset(text: &str, owner: &str, reg: &str) -> Result<String, String> {
+    let (start, body) = module_body(text, owner).ok_or_else(|| format!("no module {owner}"))?;
+    // The last assignment (rust-hdl's DFF set-up first assigns every register's input its output).
+    let at = body
+        .rfind(&format!("\n        {reg}_d = "))
+        .or_else(|| body.rfind(&format!(" {reg}_d = ")))
+        .ok_or_else(|| format!("{owner} does not assign {reg}_d"))?;
+    let line_end = at + 1 + body[at + 1..].find('\n').unwrap_or(body.len() - at - 1);
+    let line = &body[at..line_end];
+    if !line.trim_end().ends_with(" & ~rst;") {
+        return Err(format!("{owner}: `{}` has no reset gate", line.trim()));
+    }
+    let new_line = line.trim_end().trim_end_matches(" & ~rst;").to_string() + ";";
+    let (a, b) = (start + at, start + line_end);
+    Ok(format!("{}{}{}", &text[..a], new_line, &text[b..]))
 }
 
 fn pipeline_harness(module: &str, lat: usize) -> String {
@@ -753,14 +814,14 @@ fn pipeline_harness(module: &str, lat: usize) -> String {
         } else {
             (format!("v{}", i - 1), format!("t{}", i - 1))
         };
-        shift += &format!("    v{i} <= {pv};\n    t{i} <= {pt};\n");
+        shift += &format!("    v{i} <= {pv} & !rst;\n    t{i} <= {pt};\n");
     }
     format!(
         "\
-module formal_top(input clock, input valid_in, input [15:0] tag_in);
+module formal_top(input clock, input rst, input valid_in, input [15:0] tag_in);
   wire valid_out;
   wire [15:0] tag_out;
-  {module} dut(.clock(clock), .valid_in(valid_in), .tag_in(tag_in),
+  {module} dut(.clock(clock), .rst(rst), .valid_in(valid_in), .tag_in(tag_in),
     .valid_out(valid_out), .tag_out(tag_out));
 {regs}  always @(posedge clock) begin
 {shift}  end

@@ -15,6 +15,7 @@
 //! | [`formal`] | formal proofs on the exported Verilog (SymbiYosys): float units against `symfpu`, pipeline latency by k-induction, mutants |
 //! | [`dut`] | the [`dut::PipelinedDut`] trait and a stream runner that checks results, tag order and latency |
 //! | [`prop`] | proptest with shrinking and a VCD of the shrunk case for blocks with a random raw-input generator |
+//! | [`reset`] | reset checks: `rst` raised while tests stream, rust-hdl against the rule and the model, Verilator against rust-hdl |
 //! | [`rtl_sim`] | drives a rust-hdl block cycle by cycle (the fast direct loop), with optional VCD |
 //! | [`vcd_read`] | reads a VCD back and measures when `valid` leaves a block |
 //! | [`verilog_tools`] | Verilator lint and Icarus on exported Verilog |
@@ -28,6 +29,7 @@ pub mod engine;
 pub mod formal;
 pub mod plane;
 pub mod prop;
+pub mod reset;
 pub mod rtl_sim;
 pub mod slab;
 pub mod vcd_plain;

@@ -22,7 +22,7 @@
 //! widths against a `BundleFixFormat`).
 //!
 //! # Inputs
-//! - `clock`; `valid_in`, `tag_in` (16 bits, opaque, returned with the result);
+//! - `clock`; `rst` (synchronous reset: high at a clock edge, every valid bit is cleared and no test in flight leaves; data registers are not reset); `valid_in`, `tag_in` (16 bits, opaque, returned with the result);
 //! - `o_lo`, `o_hi`, `d_lo`, `d_hi` (arrays over x, y, z) and `t_max`: the bundle, fields of
 //!   `golden::bundle::fix::FixBundle` (`t_max` is its `t_lo` for AllHit, `t_hi` for AnyHit);
 //! - `box_lo`, `box_hi`: the box (`inner` for AllHit, `outer` for AnyHit);
@@ -67,6 +67,8 @@ pub const BUNDLE_TEST_LATENCY: usize = 3;
 #[derive(LogicBlock)]
 pub struct BundleTest<const G: usize, const V: usize, const D: usize, const T: usize> {
     pub clock: Signal<In, Clock>,
+    /// Synchronous reset: high at a clock edge clears every valid bit (data registers keep their values).
+    pub rst: Signal<In, Bit>,
     pub valid_in: Signal<In, Bit>,
     pub tag_in: Signal<In, Bits<TAG_BITS>>,
     pub o_lo: [Signal<In, Bits<G>>; 3],
@@ -149,6 +151,7 @@ impl<const G: usize, const V: usize, const D: usize, const T: usize> BundleTest<
         );
         Self {
             clock: Default::default(),
+            rst: Default::default(),
             valid_in: Default::default(),
             tag_in: Default::default(),
             o_lo: Default::default(),
@@ -319,7 +322,7 @@ impl<const G: usize, const V: usize, const D: usize, const T: usize> Logic
         }
         self.t_q1.d.next = self.t_max.val();
         self.empty_q1.d.next = self.empty.val();
-        self.valid_q1.d.next = self.valid_in.val();
+        self.valid_q1.d.next = self.valid_in.val() & !self.rst.val();
         self.tag_q1.d.next = self.tag_in.val();
         self.sure_q1.d.next = self.sure_eff.val();
 
@@ -390,7 +393,7 @@ impl<const G: usize, const V: usize, const D: usize, const T: usize> Logic
         }
         self.t_q2.d.next = self.t_q1.q.val();
         self.ok_q2.d.next = self.ok.val();
-        self.valid_q2.d.next = self.valid_q1.q.val();
+        self.valid_q2.d.next = self.valid_q1.q.val() & !self.rst.val();
         self.tag_q2.d.next = self.tag_q1.q.val();
 
         // Stage 3: products and compares, and the AND of all conditions.
@@ -423,7 +426,7 @@ impl<const G: usize, const V: usize, const D: usize, const T: usize> Logic
             }
         }
         self.pass_q3.d.next = self.all.val();
-        self.valid_q3.d.next = self.valid_q2.q.val();
+        self.valid_q3.d.next = self.valid_q2.q.val() & !self.rst.val();
         self.tag_q3.d.next = self.tag_q2.q.val();
 
         self.valid_out.next = self.valid_q3.q.val();

@@ -18,7 +18,7 @@
 //! `E >= 4`, `M`, `N = 1 + E + M <= 32`: the format. The presets are in [`crate::bundle::pair_float`].
 //!
 //! # Inputs
-//! - `clock`; `valid_in`, `tag_in` (16 bits, opaque, returned with the result);
+//! - `clock`; `rst` (synchronous reset: high at a clock edge, every valid bit is cleared and no test in flight leaves; data registers are not reset); `valid_in`, `tag_in` (16 bits, opaque, returned with the result);
 //! - `any_mode`: take AnyHit's bounds for this test (ORed with the constructor's choice);
 //! - `o_lo`, `o_hi`, `d_lo`, `d_hi` (arrays over x, y, z) and `t_max`: the bundle, fields of
 //!   `golden::bundle::float::FloatBundle` (`t_max` is its `t_lo` for AllHit, `t_hi` for AnyHit);
@@ -83,6 +83,8 @@ const _: () = assert!(BUNDLE_FLOAT_TEST_LATENCY == 9);
 #[derive(LogicBlock)]
 pub struct BundleFloatTest<const E: usize, const M: usize, const N: usize> {
     pub clock: Signal<In, Clock>,
+    /// Synchronous reset: high at a clock edge clears every valid bit (data registers keep their values).
+    pub rst: Signal<In, Bit>,
     pub valid_in: Signal<In, Bit>,
     pub tag_in: Signal<In, Bits<TAG_BITS>>,
     pub any_mode: Signal<In, Bit>,
@@ -208,6 +210,7 @@ impl<const E: usize, const M: usize, const N: usize> BundleFloatTest<E, M, N> {
         let adders = || std::array::from_fn(|_| FpAdd::new(Rounding::Down));
         Self {
             clock: Default::default(),
+            rst: Default::default(),
             valid_in: Default::default(),
             tag_in: Default::default(),
             any_mode: Default::default(),
@@ -350,7 +353,9 @@ impl<const E: usize, const M: usize, const N: usize> Logic for BundleFloatTest<E
         self.empty.next = false;
         for i in 0..3 {
             self.sub_a[i].valid_in.next = self.valid_in.val();
+            self.sub_a[i].rst.next = self.rst.val();
             self.sub_b[i].valid_in.next = self.valid_in.val();
+            self.sub_b[i].rst.next = self.rst.val();
             self.sub_a[i].tag_in.next = self.tag_in.val();
             self.sub_b[i].tag_in.next = self.tag_in.val();
             if self.any.val() {
@@ -468,7 +473,7 @@ impl<const E: usize, const M: usize, const N: usize> Logic for BundleFloatTest<E
         self.t_q4.d.next = self.t_d.q.val();
         self.any_q4.d.next = self.any_d.q.val();
         self.ok_q4.d.next = !self.empty_d.q.val();
-        self.valid_q4.d.next = self.sub_a[0].valid_out.val();
+        self.valid_q4.d.next = self.sub_a[0].valid_out.val() & !self.rst.val();
         self.tag_q4.d.next = self.sub_a[0].tag_out.val();
 
         // Stage 3: the products, all rounded down; an upward bound multiplies the negated operand. An
@@ -505,6 +510,7 @@ impl<const E: usize, const M: usize, const N: usize> Logic for BundleFloatTest<E
                 self.mt[i].next = self.uhi_q4[i].q.val();
             }
             self.mul_t[i].valid_in.next = self.valid_q4.q.val();
+            self.mul_t[i].rst.next = self.rst.val();
             self.mul_t[i].tag_in.next = self.tag_q4.q.val();
             self.mul_t[i].a.next = self.t_q4.q.val() ^ self.flip_x4.val();
             self.mul_t[i].b.next = self.mt[i].val();
@@ -513,7 +519,9 @@ impl<const E: usize, const M: usize, const N: usize> Logic for BundleFloatTest<E
         }
         for k in 0..6 {
             self.mul_e[k].valid_in.next = self.valid_q4.q.val();
+            self.mul_e[k].rst.next = self.rst.val();
             self.mul_x[k].valid_in.next = self.valid_q4.q.val();
+            self.mul_x[k].rst.next = self.rst.val();
             self.mul_e[k].tag_in.next = self.tag_q4.q.val();
             self.mul_x[k].tag_in.next = self.tag_q4.q.val();
         }
@@ -611,7 +619,7 @@ impl<const E: usize, const M: usize, const N: usize> Logic for BundleFloatTest<E
             self.e_q8[i].d.next = self.e_d[i].q.val();
         }
         self.ok_q8.d.next = self.ok_d.q.val();
-        self.valid_q8.d.next = self.mul_e[0].valid_out.val();
+        self.valid_q8.d.next = self.mul_e[0].valid_out.val() & !self.rst.val();
         self.tag_q8.d.next = self.mul_e[0].tag_out.val();
 
         // Stage 5: E (e_a u_c <= x_c u_a), T (e_a <= t u_a), ANDed with N and D.
@@ -631,7 +639,7 @@ impl<const E: usize, const M: usize, const N: usize> Logic for BundleFloatTest<E
             }
         }
         self.pass_q9.d.next = self.all.val();
-        self.valid_q9.d.next = self.valid_q8.q.val();
+        self.valid_q9.d.next = self.valid_q8.q.val() & !self.rst.val();
         self.tag_q9.d.next = self.tag_q8.q.val();
 
         self.valid_out.next = self.valid_q9.q.val();

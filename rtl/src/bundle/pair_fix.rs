@@ -24,7 +24,7 @@
 //! [`crate::BundleFixB12`], [`crate::BundleFixB16`] (`FD = G - 2`, so `D = V`).
 //!
 //! # Inputs
-//! - `clock`; `valid_in`, `tag_in` (16 bits, opaque, returned with the result);
+//! - `clock`; `rst` (synchronous reset: high at a clock edge, every valid bit is cleared and no test in flight leaves; data registers are not reset); `valid_in`, `tag_in` (16 bits, opaque, returned with the result);
 //! - `o_lo`, `o_hi`, `d_lo`, `d_hi` (arrays over x, y, z), `t_lo`, `t_hi`: the bundle (in two-ray mode
 //!   ray A, whose `t_lo` is not used);
 //! - `two_rays`: two-ray mode;
@@ -56,6 +56,8 @@ pub const BUNDLE_FIX_LATENCY: usize = BUNDLE_TEST_LATENCY;
 #[derive(LogicBlock)]
 pub struct BundleFix<const G: usize, const V: usize, const D: usize, const T: usize> {
     pub clock: Signal<In, Clock>,
+    /// Synchronous reset: high at a clock edge clears every valid bit (data registers keep their values).
+    pub rst: Signal<In, Bit>,
     pub valid_in: Signal<In, Bit>,
     pub tag_in: Signal<In, Bits<TAG_BITS>>,
     pub o_lo: [Signal<In, Bits<G>>; 3],
@@ -87,6 +89,7 @@ impl<const G: usize, const V: usize, const D: usize, const T: usize> BundleFix<G
     pub fn new(bf: &BundleFixFormat) -> Self {
         Self {
             clock: Default::default(),
+            rst: Default::default(),
             valid_in: Default::default(),
             tag_in: Default::default(),
             o_lo: Default::default(),
@@ -123,7 +126,9 @@ impl<const G: usize, const V: usize, const D: usize, const T: usize> Logic
         self.all_hit_test.clock.next = self.clock.val();
         self.any_hit_test.clock.next = self.clock.val();
         self.all_hit_test.valid_in.next = self.valid_in.val();
+        self.all_hit_test.rst.next = self.rst.val();
         self.any_hit_test.valid_in.next = self.valid_in.val();
+        self.any_hit_test.rst.next = self.rst.val();
         self.all_hit_test.tag_in.next = self.tag_in.val();
         self.any_hit_test.tag_in.next = self.tag_in.val();
         // Two-ray mode: AnyHit bounds on the outer box with t_hi on both sides.
@@ -228,6 +233,10 @@ impl<const G: usize, const V: usize, const D: usize, const T: usize> SlabIo
 
     fn set_clock(&mut self, high: bool) {
         self.clock.next = Clock { clk: high };
+    }
+
+    fn set_reset(&mut self, on: bool) {
+        self.rst.next = on;
     }
 
     fn drive(&mut self, test: Option<(u16, &PairInput, &BoxPair<FixBox>)>) {

@@ -24,7 +24,7 @@
 //! [`crate::BundleFloatBf16`], [`crate::BundleFloatFp16`].
 //!
 //! # Inputs
-//! - `clock`; `valid_in`, `tag_in` (16 bits, opaque, returned with the result);
+//! - `clock`; `rst` (synchronous reset: high at a clock edge, every valid bit is cleared and no test in flight leaves; data registers are not reset); `valid_in`, `tag_in` (16 bits, opaque, returned with the result);
 //! - `o_lo`, `o_hi`, `d_lo`, `d_hi` (arrays over x, y, z), `t_lo`, `t_hi`: the bundle (ray A in two-ray
 //!   mode, where `t_lo` is unused);
 //! - `two_rays`: two single rays instead of a bundle; ray B is `r_o_lo`, `r_o_hi`, `r_d_lo`, `r_d_hi`
@@ -57,6 +57,8 @@ pub const BUNDLE_FLOAT_LATENCY: usize = BUNDLE_FLOAT_TEST_LATENCY;
 #[derive(LogicBlock)]
 pub struct BundleFloat<const E: usize, const M: usize, const N: usize> {
     pub clock: Signal<In, Clock>,
+    /// Synchronous reset: high at a clock edge clears every valid bit (data registers keep their values).
+    pub rst: Signal<In, Bit>,
     pub valid_in: Signal<In, Bit>,
     pub tag_in: Signal<In, Bits<TAG_BITS>>,
     pub o_lo: [Signal<In, Bits<N>>; 3],
@@ -88,6 +90,7 @@ impl<const E: usize, const M: usize, const N: usize> BundleFloat<E, M, N> {
     pub fn new() -> Self {
         Self {
             clock: Default::default(),
+            rst: Default::default(),
             valid_in: Default::default(),
             tag_in: Default::default(),
             o_lo: Default::default(),
@@ -128,7 +131,9 @@ impl<const E: usize, const M: usize, const N: usize> Logic for BundleFloat<E, M,
         self.all_hit_test.clock.next = self.clock.val();
         self.any_hit_test.clock.next = self.clock.val();
         self.all_hit_test.valid_in.next = self.valid_in.val();
+        self.all_hit_test.rst.next = self.rst.val();
         self.any_hit_test.valid_in.next = self.valid_in.val();
+        self.any_hit_test.rst.next = self.rst.val();
         self.all_hit_test.tag_in.next = self.tag_in.val();
         self.any_hit_test.tag_in.next = self.tag_in.val();
         // Two rays: both testers take AnyHit's bounds (the AnyHit tester always does).
@@ -248,6 +253,10 @@ impl<const E: usize, const M: usize, const N: usize> SlabIo for BundleFloat<E, M
 
     fn set_clock(&mut self, high: bool) {
         self.clock.next = Clock { clk: high };
+    }
+
+    fn set_reset(&mut self, on: bool) {
+        self.rst.next = on;
     }
 
     fn drive(&mut self, test: Option<(u16, &FloatPairInput, &BoxPair<FloatBox>)>) {

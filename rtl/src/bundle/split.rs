@@ -13,7 +13,9 @@
 //! [`crate::BundleSplitB12`], [`crate::BundleSplitB16`]. The ray store holds [`SPLIT_RAYS`] = 16 rays.
 //!
 //! # Inputs
-//! - `clock`;
+//! - `clock`; `rst` (synchronous reset: high at a clock edge, the job in progress and the pair's answers
+//!   in flight are dropped, no `done` follows, and `ready` is high after that edge; a `start` in a clock
+//!   with `rst` high is not taken, a ray store write is; the ray store is not cleared);
 //! - ray store write port: `ray_we`, `ray_addr` (4 bits), `ray_o_lo`, `ray_o_hi`, `ray_d_lo`, `ray_d_hi`
 //!   (arrays over x, y, z), `ray_t` (the ray's `t_hi`): ray `ray_addr` as a quantised tiny bundle
 //!   (`golden::bundle::fix::quantize_bundle` of `Bundle::of_ray`; its `t_lo` is not needed). Written at the
@@ -96,6 +98,10 @@ pub fn split_clocks(r: &SplitResult) -> u32 {
 #[derive(LogicBlock)]
 pub struct BundleSplit<const G: usize, const V: usize, const D: usize, const T: usize> {
     pub clock: Signal<In, Clock>,
+    /// Synchronous reset: high at a clock edge, the job in progress and every answer in flight are
+    /// dropped (no `done` follows) and the block is ready; the ray store and result registers keep
+    /// their contents.
+    pub rst: Signal<In, Bit>,
     // ray store write port
     pub ray_we: Signal<In, Bit>,
     pub ray_addr: Signal<In, Bits<SPLIT_ADDR_BITS>>,
@@ -209,6 +215,7 @@ impl<const G: usize, const V: usize, const D: usize, const T: usize> BundleSplit
     pub fn new(bf: &BundleFixFormat) -> Self {
         Self {
             clock: Default::default(),
+            rst: Default::default(),
             ray_we: Default::default(),
             ray_addr: Default::default(),
             ray_o_lo: Default::default(),
@@ -310,6 +317,7 @@ impl<const G: usize, const V: usize, const D: usize, const T: usize> Logic
     fn update(&mut self) {
         // Clocks.
         self.pair.clock.next = self.clock.val();
+        self.pair.rst.next = self.rst.val();
         for i in 0..3 {
             self.box_lo_q[i].clock.next = self.clock.val();
             self.box_hi_q[i].clock.next = self.clock.val();
@@ -500,7 +508,7 @@ impl<const G: usize, const V: usize, const D: usize, const T: usize> Logic
         // Address the next pair: in the clock the bundle comes back undecided, then while rays remain.
         self.advance.next = (self.bundle_back.val() & self.undecided.val())
             | (self.rays_q.q.val() & self.rem_q.q.val().any());
-        self.take_job.next = self.start.val() & !self.busy_q.q.val();
+        self.take_job.next = self.start.val() & !self.busy_q.q.val() & !self.rst.val();
 
         // Registers: hold by default.
         self.busy_q.d.next = self.busy_q.q.val();
@@ -574,6 +582,13 @@ impl<const G: usize, const V: usize, const D: usize, const T: usize> Logic
             self.clocks_out_q.d.next = self.clocks_q.q.val() + self.one8.val();
         }
 
+        if self.rst.val() {
+            self.busy_q.d.next = false;
+            self.rays_q.d.next = false;
+            self.issue_q.d.next = false;
+            self.done_q.d.next = false;
+        }
+
         self.ready.next = !self.busy_q.q.val();
         self.done.next = self.done_q.q.val();
         self.all_hit.next = self.all_hit_q.q.val();
@@ -630,6 +645,8 @@ pub struct SplitIn {
     pub write: Option<(usize, FixBundle)>,
     /// `start` high with the job (ignored by the block unless `ready`).
     pub start: Option<SplitJob>,
+    /// `rst` high.
+    pub reset: bool,
 }
 
 /// The outputs of one clock.
@@ -699,6 +716,7 @@ impl<const G: usize, const V: usize, const D: usize, const T: usize> BundleSplit
     fn drive(&mut self, input: &SplitIn) {
         let (addr, r) = input.write.unwrap_or_default();
         self.ray_we.next = input.write.is_some();
+        self.rst.next = input.reset;
         self.ray_addr.next = bits::<SPLIT_ADDR_BITS>(addr as u64);
         let j = input.start.unwrap_or_default();
         let b = &j.bundle;

@@ -10,7 +10,7 @@
 //! [`FpAdd::with_cuts`]).
 //!
 //! # Inputs / outputs
-//! `clock`, `valid_in`, `tag_in` (16 bits), `a`, `b` in; `valid_out`, `tag_out`, `y` out (registered).
+//! `clock`, `rst` (synchronous, clears the valid bits), `valid_in`, `tag_in` (16 bits), `a`, `b` in; `valid_out`, `tag_out`, `y` out (registered).
 //!
 //! # Stages
 //! 1. `_q1`: unpack; order the operands by magnitude; exponent difference; the special cases (NaN, infinities,
@@ -59,6 +59,8 @@ pub const FP_ADD_LATENCY: usize = fp_add_latency(0);
 #[derive(LogicBlock)]
 pub struct FpAdd<const E: usize, const M: usize, const N: usize> {
     pub clock: Signal<In, Clock>,
+    /// Synchronous reset: high at a clock edge clears every valid bit (data registers keep their values).
+    pub rst: Signal<In, Bit>,
     pub valid_in: Signal<In, Bit>,
     pub tag_in: Signal<In, Bits<TAG_BITS>>,
     pub a: Signal<In, Bits<N>>,
@@ -189,6 +191,7 @@ impl<const E: usize, const M: usize, const N: usize> FpAdd<E, M, N> {
         let c = |v: u64| Constant::new(bits::<N>(v));
         Self {
             clock: Default::default(),
+            rst: Default::default(),
             valid_in: Default::default(),
             tag_in: Default::default(),
             a: Default::default(),
@@ -405,7 +408,7 @@ impl<const E: usize, const M: usize, const N: usize> Logic for FpAdd<E, M, N> {
         }
         self.special_q1.d.next = self.special.val();
         self.special_val_q1.d.next = self.special_val.val();
-        self.valid_q1.d.next = self.valid_in.val();
+        self.valid_q1.d.next = self.valid_in.val() & !self.rst.val();
         self.tag_q1.d.next = self.tag_in.val();
 
         // Stage 2: align with sticky, add or subtract.
@@ -426,7 +429,7 @@ impl<const E: usize, const M: usize, const N: usize> Logic for FpAdd<E, M, N> {
         self.sign_qa.d.next = self.sign_q1.q.val();
         self.special_qa.d.next = self.special_q1.q.val();
         self.special_val_qa.d.next = self.special_val_q1.q.val();
-        self.valid_qa.d.next = self.valid_q1.q.val();
+        self.valid_qa.d.next = self.valid_q1.q.val() & !self.rst.val();
         self.tag_qa.d.next = self.tag_q1.q.val();
         if self.sub_qa.q.val() {
             if self.lost_qa.q.val() {
@@ -442,7 +445,7 @@ impl<const E: usize, const M: usize, const N: usize> Logic for FpAdd<E, M, N> {
         self.sign_q2.d.next = self.sign_qa.q.val();
         self.special_q2.d.next = self.special_qa.q.val();
         self.special_val_q2.d.next = self.special_val_qa.q.val();
-        self.valid_q2.d.next = self.valid_qa.q.val();
+        self.valid_q2.d.next = self.valid_qa.q.val() & !self.rst.val();
         self.tag_q2.d.next = self.tag_qa.q.val();
 
         // Stage 3: renormalise, normalise left while the exponent stays normal, round.
@@ -513,7 +516,7 @@ impl<const E: usize, const M: usize, const N: usize> Logic for FpAdd<E, M, N> {
         }
         self.special_qn.d.next = self.special_q2.q.val();
         self.special_val_qn.d.next = self.special_val_q2.q.val();
-        self.valid_qn.d.next = self.valid_q2.q.val();
+        self.valid_qn.d.next = self.valid_q2.q.val() & !self.rst.val();
         self.tag_qn.d.next = self.tag_q2.q.val();
         self.round.sig.next = self.sig_qn.q.val();
         self.round.bexp.next = self.bexp_qn.q.val();
@@ -525,7 +528,7 @@ impl<const E: usize, const M: usize, const N: usize> Logic for FpAdd<E, M, N> {
         } else {
             self.y_q3.d.next = self.round.y.val();
         }
-        self.valid_q3.d.next = self.valid_qn.q.val();
+        self.valid_q3.d.next = self.valid_qn.q.val() & !self.rst.val();
         self.tag_q3.d.next = self.tag_qn.q.val();
 
         self.valid_out.next = self.valid_q3.q.val();

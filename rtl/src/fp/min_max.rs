@@ -3,7 +3,7 @@
 //! `golden::format::float::FloatFormat::{min, max}`.
 //!
 //! # Inputs / outputs
-//! `clock`, `valid_in`, `tag_in` (16 bits), `a`, `b` in; `valid_out`, `tag_out`, `min`, `max` out.
+//! `clock`, `rst` (synchronous, clears the valid bits), `valid_in`, `tag_in` (16 bits), `a`, `b` in; `valid_out`, `tag_out`, `min`, `max` out.
 
 use crate::fp::cmp::FpCmp;
 use crate::TAG_BITS;
@@ -17,6 +17,8 @@ pub const FP_MIN_MAX_LATENCY: usize = 1;
 #[derive(LogicBlock)]
 pub struct FpMinMax<const N: usize> {
     pub clock: Signal<In, Clock>,
+    /// Synchronous reset: high at a clock edge clears every valid bit (data registers keep their values).
+    pub rst: Signal<In, Bit>,
     pub valid_in: Signal<In, Bit>,
     pub tag_in: Signal<In, Bits<TAG_BITS>>,
     pub a: Signal<In, Bits<N>>,
@@ -42,6 +44,7 @@ impl<const N: usize> FpMinMax<N> {
         assert_eq!(f.width() as usize, N, "FpMinMax<{N}> for {}", f.name());
         Self {
             clock: Default::default(),
+            rst: Default::default(),
             valid_in: Default::default(),
             tag_in: Default::default(),
             a: Default::default(),
@@ -92,7 +95,7 @@ impl<const N: usize> Logic for FpMinMax<N> {
                 self.max_q.d.next = self.b.val();
             }
         }
-        self.valid_q.d.next = self.valid_in.val();
+        self.valid_q.d.next = self.valid_in.val() & !self.rst.val();
         self.tag_q.d.next = self.tag_in.val();
         self.valid_out.next = self.valid_q.q.val();
         self.tag_out.next = self.tag_q.q.val();

@@ -7,7 +7,7 @@
 //! `E >= 4`, `M`: the format; `N = 1 + E + M` (at most 32). The rounding mode is a constructor argument.
 //!
 //! # Inputs / outputs
-//! `clock`, `valid_in`, `tag_in` (16 bits), `a`, `b` in; `valid_out`, `tag_out`, `y` out (registered).
+//! `clock`, `rst` (synchronous, clears the valid bits), `valid_in`, `tag_in` (16 bits), `a`, `b` in; `valid_out`, `tag_out`, `y` out (registered).
 //!
 //! # Stages
 //! 1. `_q1`: unpack (subnormals take exponent 1 and no hidden bit); sum of exponents; special operands
@@ -49,6 +49,8 @@ pub const FP_MUL_LATENCY: usize = fp_mul_latency(0);
 #[derive(LogicBlock)]
 pub struct FpMul<const E: usize, const M: usize, const N: usize> {
     pub clock: Signal<In, Clock>,
+    /// Synchronous reset: high at a clock edge clears every valid bit (data registers keep their values).
+    pub rst: Signal<In, Bit>,
     pub valid_in: Signal<In, Bit>,
     pub tag_in: Signal<In, Bits<TAG_BITS>>,
     pub a: Signal<In, Bits<N>>,
@@ -144,6 +146,7 @@ impl<const E: usize, const M: usize, const N: usize> FpMul<E, M, N> {
         let bias = (1u64 << (E - 1)) - 1;
         Self {
             clock: Default::default(),
+            rst: Default::default(),
             valid_in: Default::default(),
             tag_in: Default::default(),
             a: Default::default(),
@@ -303,7 +306,7 @@ impl<const E: usize, const M: usize, const N: usize> Logic for FpMul<E, M, N> {
         }
         self.special_q1.d.next = self.special.val();
         self.special_val_q1.d.next = self.special_val.val();
-        self.valid_q1.d.next = self.valid_in.val();
+        self.valid_q1.d.next = self.valid_in.val() & !self.rst.val();
         self.tag_q1.d.next = self.tag_in.val();
 
         // Stage 2: normalised product; exponent; right shift into the subnormal range with sticky.
@@ -314,7 +317,7 @@ impl<const E: usize, const M: usize, const N: usize> Logic for FpMul<E, M, N> {
         self.sign_qr.d.next = self.sign_q1.q.val();
         self.special_qr.d.next = self.special_q1.q.val();
         self.special_val_qr.d.next = self.special_val_q1.q.val();
-        self.valid_qr.d.next = self.valid_q1.q.val();
+        self.valid_qr.d.next = self.valid_q1.q.val() & !self.rst.val();
         self.tag_qr.d.next = self.tag_q1.q.val();
         // Cut PRODUCT: the normalised product and the side data.
         self.pos_qp.d.next = self.prod.pos.val();
@@ -324,7 +327,7 @@ impl<const E: usize, const M: usize, const N: usize> Logic for FpMul<E, M, N> {
         self.sign_qp.d.next = self.sign_qr.q.val();
         self.special_qp.d.next = self.special_qr.q.val();
         self.special_val_qp.d.next = self.special_val_qr.q.val();
-        self.valid_qp.d.next = self.valid_qr.q.val();
+        self.valid_qp.d.next = self.valid_qr.q.val() & !self.rst.val();
         self.tag_qp.d.next = self.tag_qr.q.val();
         self.t.next = self.pos_qp.q.val() + self.exp_sum_qp.q.val();
         if self.t.val() > self.k_n.val() {
@@ -346,7 +349,7 @@ impl<const E: usize, const M: usize, const N: usize> Logic for FpMul<E, M, N> {
         self.sign_q2.d.next = self.sign_qp.q.val();
         self.special_q2.d.next = self.special_qp.q.val();
         self.special_val_q2.d.next = self.special_val_qp.q.val();
-        self.valid_q2.d.next = self.valid_qp.q.val();
+        self.valid_q2.d.next = self.valid_qp.q.val() & !self.rst.val();
         self.tag_q2.d.next = self.tag_qp.q.val();
 
         // Stage 3: round and pack.
@@ -360,7 +363,7 @@ impl<const E: usize, const M: usize, const N: usize> Logic for FpMul<E, M, N> {
         } else {
             self.y_q3.d.next = self.round.y.val();
         }
-        self.valid_q3.d.next = self.valid_q2.q.val();
+        self.valid_q3.d.next = self.valid_q2.q.val() & !self.rst.val();
         self.tag_q3.d.next = self.tag_q2.q.val();
 
         self.valid_out.next = self.valid_q3.q.val();

@@ -14,7 +14,7 @@
 //! # Ports
 //! The slab tester's (`ray_o_lo`, `ray_o_hi`, `ray_m_lo`, `ray_m_hi`, `ray_neg`, `ray_t_min`, `ray_t_max`,
 //! `box_lo`, `box_hi`), plus `ray_d_lo`, `ray_d_hi` (the direction interval) and per plane `plane_nx`,
-//! `plane_ny`, `plane_nz`, `plane_w`; outputs `valid_out`, `tag_out`, `hit` (not culled), `t_entry`,
+//! `plane_ny`, `plane_nz`, `plane_w`, `clock`, `rst` (synchronous: clears every valid bit), `valid_in`, `tag_in`; outputs `valid_out`, `tag_out`, `hit` (not culled), `t_entry`,
 //! `t_exit`.
 //!
 //! # Stages
@@ -118,6 +118,8 @@ pub struct PlaneFix<
     const PCUTS: usize = PLANE_FIX_CUTS,
 > {
     pub clock: Signal<In, Clock>,
+    /// Synchronous reset: high at a clock edge clears every valid bit (data registers keep their values).
+    pub rst: Signal<In, Bit>,
     pub valid_in: Signal<In, Bit>,
     pub tag_in: Signal<In, Bits<TAG_BITS>>,
     pub ray_o_lo: [Signal<In, Bits<G>>; 3],
@@ -217,6 +219,7 @@ impl<
         let t = T as u32;
         Self {
             clock: Default::default(),
+            rst: Default::default(),
             valid_in: Default::default(),
             tag_in: Default::default(),
             ray_o_lo: Default::default(),
@@ -338,6 +341,10 @@ impl<
         self.clock.next = Clock { clk: high };
     }
 
+    fn set_reset(&mut self, on: bool) {
+        self.rst.next = on;
+    }
+
     fn drive(&mut self, test: Option<(u16, &NodeFixRay, &FixNode)>) {
         match test {
             Some((tag, r, n)) => {
@@ -439,6 +446,7 @@ impl<
         // The slab tester, on the same inputs.
         self.slab.clock.next = self.clock.val();
         self.slab.valid_in.next = self.valid_in.val();
+        self.slab.rst.next = self.rst.val();
         self.slab.tag_in.next = self.tag_in.val();
         for a in 0..3 {
             self.slab.ray_o_lo[a].next = self.ray_o_lo[a].val();
@@ -458,27 +466,27 @@ impl<
             self.slab_entry_qw[w].clock.next = self.clock.val();
             self.slab_exit_qw[w].clock.next = self.clock.val();
         }
-        self.slab_valid_qw[0].d.next = self.slab.valid_out.val();
+        self.slab_valid_qw[0].d.next = self.slab.valid_out.val() & !self.rst.val();
         self.slab_tag_qw[0].d.next = self.slab.tag_out.val();
         self.slab_hit_qw[0].d.next = self.slab.hit.val();
         self.slab_entry_qw[0].d.next = self.slab.t_entry.val();
         self.slab_exit_qw[0].d.next = self.slab.t_exit.val();
-        self.slab_valid_qw[1].d.next = self.slab_valid_qw[0].q.val();
+        self.slab_valid_qw[1].d.next = self.slab_valid_qw[0].q.val() & !self.rst.val();
         self.slab_tag_qw[1].d.next = self.slab_tag_qw[0].q.val();
         self.slab_hit_qw[1].d.next = self.slab_hit_qw[0].q.val();
         self.slab_entry_qw[1].d.next = self.slab_entry_qw[0].q.val();
         self.slab_exit_qw[1].d.next = self.slab_exit_qw[0].q.val();
-        self.slab_valid_qw[2].d.next = self.slab_valid_qw[1].q.val();
+        self.slab_valid_qw[2].d.next = self.slab_valid_qw[1].q.val() & !self.rst.val();
         self.slab_tag_qw[2].d.next = self.slab_tag_qw[1].q.val();
         self.slab_hit_qw[2].d.next = self.slab_hit_qw[1].q.val();
         self.slab_entry_qw[2].d.next = self.slab_entry_qw[1].q.val();
         self.slab_exit_qw[2].d.next = self.slab_exit_qw[1].q.val();
-        self.slab_valid_qw[3].d.next = self.slab_valid_qw[2].q.val();
+        self.slab_valid_qw[3].d.next = self.slab_valid_qw[2].q.val() & !self.rst.val();
         self.slab_tag_qw[3].d.next = self.slab_tag_qw[2].q.val();
         self.slab_hit_qw[3].d.next = self.slab_hit_qw[2].q.val();
         self.slab_entry_qw[3].d.next = self.slab_entry_qw[2].q.val();
         self.slab_exit_qw[3].d.next = self.slab_exit_qw[2].q.val();
-        self.slab_valid_qw[4].d.next = self.slab_valid_qw[3].q.val();
+        self.slab_valid_qw[4].d.next = self.slab_valid_qw[3].q.val() & !self.rst.val();
         self.slab_tag_qw[4].d.next = self.slab_tag_qw[3].q.val();
         self.slab_hit_qw[4].d.next = self.slab_hit_qw[3].q.val();
         self.slab_entry_qw[4].d.next = self.slab_entry_qw[3].q.val();
@@ -659,7 +667,7 @@ impl<
             self.exit_q5.d.next = self.slab_exit_qw[4].q.val();
         }
         self.live_q5.d.next = self.slab_hit_qw[4].q.val() & !self.par_q4.q.val();
-        self.valid_q5.d.next = self.slab_valid_qw[4].q.val();
+        self.valid_q5.d.next = self.slab_valid_qw[4].q.val() & !self.rst.val();
         self.tag_q5.d.next = self.slab_tag_qw[4].q.val();
 
         // Stage 6: the cull decision.
@@ -668,7 +676,7 @@ impl<
         self.hit_q6.d.next = self.live_q5.q.val()
             & ((self.entry_q5.q.val() ^ self.sign_t.val())
                 <= (self.exit_q5.q.val() ^ self.sign_t.val()));
-        self.valid_q6.d.next = self.valid_q5.q.val();
+        self.valid_q6.d.next = self.valid_q5.q.val() & !self.rst.val();
         self.tag_q6.d.next = self.tag_q5.q.val();
 
         self.valid_out.next = self.valid_q6.q.val();

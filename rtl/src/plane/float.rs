@@ -11,7 +11,7 @@
 //! # Ports
 //! The [`SlabFloat`] ports (`ray_o_lo`, `ray_o_hi`, `ray_m_lo`, `ray_m_hi`, `ray_neg`, `ray_t_min`,
 //! `ray_t_max`, `box_lo`, `box_hi`), the direction interval `ray_d_lo`, `ray_d_hi` (3 each), the planes
-//! `plane_nx`, `plane_ny`, `plane_nz`, `plane_w` (`K` each); `valid_in`, `tag_in` (16 bits). Out
+//! `plane_nx`, `plane_ny`, `plane_nz`, `plane_w` (`K` each); `clock`, `rst` (synchronous: clears every valid bit), `valid_in`, `tag_in` (16 bits). Out
 //! (registered): `valid_out`, `tag_out`, `hit`, `t_entry`, `t_exit`.
 //!
 //! # Stages (clock at whose end a value is registered)
@@ -80,6 +80,8 @@ const _: () = assert!(PLANE_FLOAT_LATENCY > SLAB_FLOAT_LATENCY + 1);
 #[derive(LogicBlock)]
 pub struct PlaneUnit<const E: usize, const M: usize, const N: usize> {
     pub clock: Signal<In, Clock>,
+    /// Synchronous reset: high at a clock edge clears every valid bit (data registers keep their values).
+    pub rst: Signal<In, Bit>,
     pub valid_in: Signal<In, Bit>,
     pub tag_in: Signal<In, Bits<TAG_BITS>>,
     pub n_0: Signal<In, Bits<N>>,
@@ -114,10 +116,10 @@ pub struct PlaneUnit<const E: usize, const M: usize, const N: usize> {
     n_d3: [Delay3<Bits<N>>; 3],
     w_d: [Delay3<Bits<N>>; 6],
     pos: [Signal<Local, Bit>; 3],
-    ol: [Signal<Local, Bits<N>>; 3],
-    oh: [Signal<Local, Bits<N>>; 3],
-    d_lo: [Signal<Local, Bits<N>>; 3],
-    d_hi: [Signal<Local, Bits<N>>; 3],
+    ol_v: [Signal<Local, Bits<N>>; 3],
+    oh_v: [Signal<Local, Bits<N>>; 3],
+    d_lo_v: [Signal<Local, Bits<N>>; 3],
+    d_hi_v: [Signal<Local, Bits<N>>; 3],
     // products
     mul_u: [FpMul<E, M, N>; 3],
     mul_l: [FpMul<E, M, N>; 3],
@@ -161,6 +163,7 @@ impl<const E: usize, const M: usize, const N: usize> PlaneUnit<E, M, N> {
         let muls = |mode| std::array::from_fn(|_| FpMul::new(mode));
         Self {
             clock: Default::default(),
+            rst: Default::default(),
             valid_in: Default::default(),
             tag_in: Default::default(),
             n_0: Default::default(),
@@ -193,10 +196,10 @@ impl<const E: usize, const M: usize, const N: usize> PlaneUnit<E, M, N> {
             n_d3: Default::default(),
             w_d: Default::default(),
             pos: Default::default(),
-            ol: Default::default(),
-            oh: Default::default(),
-            d_lo: Default::default(),
-            d_hi: Default::default(),
+            ol_v: Default::default(),
+            oh_v: Default::default(),
+            d_lo_v: Default::default(),
+            d_hi_v: Default::default(),
             mul_u: muls(Rounding::Down),
             mul_l: muls(Rounding::Down),
             mul_h: muls(Rounding::Up),
@@ -246,18 +249,18 @@ impl<const E: usize, const M: usize, const N: usize> Logic for PlaneUnit<E, M, N
         self.n_d1[0].d.next = self.n_0.val();
         self.n_d1[1].d.next = self.n_1.val();
         self.n_d1[2].d.next = self.n_2.val();
-        self.ol[0].next = self.ol_0.val();
-        self.ol[1].next = self.ol_1.val();
-        self.ol[2].next = self.ol_2.val();
-        self.oh[0].next = self.oh_0.val();
-        self.oh[1].next = self.oh_1.val();
-        self.oh[2].next = self.oh_2.val();
-        self.d_lo[0].next = self.d_lo_0.val();
-        self.d_lo[1].next = self.d_lo_1.val();
-        self.d_lo[2].next = self.d_lo_2.val();
-        self.d_hi[0].next = self.d_hi_0.val();
-        self.d_hi[1].next = self.d_hi_1.val();
-        self.d_hi[2].next = self.d_hi_2.val();
+        self.ol_v[0].next = self.ol_0.val();
+        self.ol_v[1].next = self.ol_1.val();
+        self.ol_v[2].next = self.ol_2.val();
+        self.oh_v[0].next = self.oh_0.val();
+        self.oh_v[1].next = self.oh_1.val();
+        self.oh_v[2].next = self.oh_2.val();
+        self.d_lo_v[0].next = self.d_lo_0.val();
+        self.d_lo_v[1].next = self.d_lo_1.val();
+        self.d_lo_v[2].next = self.d_lo_2.val();
+        self.d_hi_v[0].next = self.d_hi_0.val();
+        self.d_hi_v[1].next = self.d_hi_1.val();
+        self.d_hi_v[2].next = self.d_hi_2.val();
         for i in 0..6 {
             self.w_d[i].clock.next = self.clock.val();
         }
@@ -274,8 +277,11 @@ impl<const E: usize, const M: usize, const N: usize> Logic for PlaneUnit<E, M, N
             self.mul_l[i].clock.next = self.clock.val();
             self.mul_h[i].clock.next = self.clock.val();
             self.mul_u[i].valid_in.next = self.valid_in.val();
+            self.mul_u[i].rst.next = self.rst.val();
             self.mul_l[i].valid_in.next = self.valid_in.val();
+            self.mul_l[i].rst.next = self.rst.val();
             self.mul_h[i].valid_in.next = self.valid_in.val();
+            self.mul_h[i].rst.next = self.rst.val();
             self.mul_u[i].tag_in.next = self.tag_in.val();
             self.mul_l[i].tag_in.next = self.tag_in.val();
             self.mul_h[i].tag_in.next = self.tag_in.val();
@@ -285,13 +291,13 @@ impl<const E: usize, const M: usize, const N: usize> Logic for PlaneUnit<E, M, N
             self.mul_l[i].a.next = self.n_d3[i].q.val();
             self.mul_h[i].a.next = self.n_d3[i].q.val();
             if self.pos[i].val() {
-                self.mul_u[i].b.next = self.ol[i].val();
-                self.mul_l[i].b.next = self.d_lo[i].val();
-                self.mul_h[i].b.next = self.d_hi[i].val();
+                self.mul_u[i].b.next = self.ol_v[i].val();
+                self.mul_l[i].b.next = self.d_lo_v[i].val();
+                self.mul_h[i].b.next = self.d_hi_v[i].val();
             } else {
-                self.mul_u[i].b.next = self.oh[i].val();
-                self.mul_l[i].b.next = self.d_hi[i].val();
-                self.mul_h[i].b.next = self.d_lo[i].val();
+                self.mul_u[i].b.next = self.oh_v[i].val();
+                self.mul_l[i].b.next = self.d_hi_v[i].val();
+                self.mul_h[i].b.next = self.d_lo_v[i].val();
             }
         }
 
@@ -310,8 +316,11 @@ impl<const E: usize, const M: usize, const N: usize> Logic for PlaneUnit<E, M, N
         self.add_h2.clock.next = self.clock.val();
         self.add_s3.clock.next = self.clock.val();
         self.add_s1.valid_in.next = self.mul_u[0].valid_out.val();
+        self.add_s1.rst.next = self.rst.val();
         self.add_l1.valid_in.next = self.mul_l[0].valid_out.val();
+        self.add_l1.rst.next = self.rst.val();
         self.add_h1.valid_in.next = self.mul_h[0].valid_out.val();
+        self.add_h1.rst.next = self.rst.val();
         self.add_s1.tag_in.next = self.mul_u[0].tag_out.val();
         self.add_l1.tag_in.next = self.mul_l[0].tag_out.val();
         self.add_h1.tag_in.next = self.mul_h[0].tag_out.val();
@@ -322,8 +331,11 @@ impl<const E: usize, const M: usize, const N: usize> Logic for PlaneUnit<E, M, N
         self.add_h1.a.next = self.mul_h[0].y.val();
         self.add_h1.b.next = self.mul_h[1].y.val();
         self.add_s2.valid_in.next = self.add_s1.valid_out.val();
+        self.add_s2.rst.next = self.rst.val();
         self.add_l2.valid_in.next = self.add_l1.valid_out.val();
+        self.add_l2.rst.next = self.rst.val();
         self.add_h2.valid_in.next = self.add_h1.valid_out.val();
+        self.add_h2.rst.next = self.rst.val();
         self.add_s2.tag_in.next = self.add_s1.tag_out.val();
         self.add_l2.tag_in.next = self.add_l1.tag_out.val();
         self.add_h2.tag_in.next = self.add_h1.tag_out.val();
@@ -334,6 +346,7 @@ impl<const E: usize, const M: usize, const N: usize> Logic for PlaneUnit<E, M, N
         self.add_h2.a.next = self.add_h1.y.val();
         self.add_h2.b.next = self.h2_d.q.val();
         self.add_s3.valid_in.next = self.add_s2.valid_out.val();
+        self.add_s3.rst.next = self.rst.val();
         self.add_s3.tag_in.next = self.add_s2.tag_out.val();
         self.add_s3.a.next = self.add_s2.y.val();
         self.add_s3.b.next = self.w_d[5].q.val() ^ self.sign_n.val();
@@ -355,6 +368,7 @@ impl<const E: usize, const M: usize, const N: usize> Logic for PlaneUnit<E, M, N
         self.s_neg.next = (self.add_s3.y.val() & self.sign_n.val()).any();
         self.recip.clock.next = self.clock.val();
         self.recip.valid_in.next = self.add_s3.valid_out.val();
+        self.recip.rst.next = self.rst.val();
         self.recip.tag_in.next = self.add_s3.tag_out.val();
         self.sneg_q13.d.next = self.add_s3.y.val() ^ self.sign_n.val();
         self.exit_q13.d.next = false;
@@ -391,6 +405,7 @@ impl<const E: usize, const M: usize, const N: usize> Logic for PlaneUnit<E, M, N
         // The bound RU(-S_lo * r); the case flags wait for it.
         self.mul_t.clock.next = self.clock.val();
         self.mul_t.valid_in.next = self.recip.valid_out.val();
+        self.mul_t.rst.next = self.rst.val();
         self.mul_t.tag_in.next = self.recip.tag_out.val();
         self.mul_t.a.next = self.sneg_q13.q.val();
         self.mul_t.b.next = self.recip.r.val();
@@ -431,6 +446,8 @@ impl<const E: usize, const M: usize, const N: usize> Logic for PlaneUnit<E, M, N
 #[derive(LogicBlock)]
 pub struct PlaneFloat<const E: usize, const M: usize, const N: usize, const K: usize> {
     pub clock: Signal<In, Clock>,
+    /// Synchronous reset: high at a clock edge clears every valid bit (data registers keep their values).
+    pub rst: Signal<In, Bit>,
     pub valid_in: Signal<In, Bit>,
     pub tag_in: Signal<In, Bits<TAG_BITS>>,
     pub ray_o_lo: [Signal<In, Bits<N>>; 3],
@@ -553,6 +570,7 @@ impl<const E: usize, const M: usize, const N: usize, const K: usize> PlaneFloat<
         let cmps4 = || std::array::from_fn(|_| FpCmp::new(inf));
         Self {
             clock: Default::default(),
+            rst: Default::default(),
             valid_in: Default::default(),
             tag_in: Default::default(),
             ray_o_lo: Default::default(),
@@ -695,6 +713,10 @@ impl<const E: usize, const M: usize, const N: usize, const K: usize> SlabIo
         self.clock.next = Clock { clk: high };
     }
 
+    fn set_reset(&mut self, on: bool) {
+        self.rst.next = on;
+    }
+
     fn drive(&mut self, test: Option<(u16, &NodeFloatRay, &FloatNode)>) {
         match test {
             Some((tag, nr, node)) => {
@@ -790,6 +812,7 @@ impl<const E: usize, const M: usize, const N: usize, const K: usize> Logic
         // The slab test, and its result's wait.
         self.slab.clock.next = self.clock.val();
         self.slab.valid_in.next = self.valid_in.val();
+        self.slab.rst.next = self.rst.val();
         self.slab.tag_in.next = self.tag_in.val();
         for i in 0..3 {
             self.slab.ray_o_lo[i].next = self.ray_o_lo[i].val();
@@ -849,10 +872,12 @@ impl<const E: usize, const M: usize, const N: usize, const K: usize> Logic
             self.d_hi_d2[i].clock.next = self.clock.val();
             self.d_hi_d3[i].clock.next = self.clock.val();
             self.add_c[i].valid_in.next = self.valid_in.val();
+            self.add_c[i].rst.next = self.rst.val();
             self.add_c[i].tag_in.next = self.tag_in.val();
             self.add_c[i].a.next = self.box_lo[i].val();
             self.add_c[i].b.next = self.box_hi[i].val();
             self.mul_c[i].valid_in.next = self.add_c[i].valid_out.val();
+            self.mul_c[i].rst.next = self.rst.val();
             self.mul_c[i].tag_in.next = self.add_c[i].tag_out.val();
             self.mul_c[i].a.next = self.add_c[i].y.val();
             self.mul_c[i].b.next = self.half_n.val();
@@ -861,7 +886,9 @@ impl<const E: usize, const M: usize, const N: usize, const K: usize> Logic
             self.o_hi_d1[i].d.next = self.ray_o_hi[i].val();
             self.o_hi_d2[i].d.next = self.o_hi_d1[i].q.val();
             self.add_ol[i].valid_in.next = self.mul_c[i].valid_out.val();
+            self.add_ol[i].rst.next = self.rst.val();
             self.add_oh[i].valid_in.next = self.mul_c[i].valid_out.val();
+            self.add_oh[i].rst.next = self.rst.val();
             self.add_ol[i].tag_in.next = self.mul_c[i].tag_out.val();
             self.add_oh[i].tag_in.next = self.mul_c[i].tag_out.val();
             self.add_ol[i].a.next = self.o_lo_d2[i].q.val();
@@ -880,6 +907,7 @@ impl<const E: usize, const M: usize, const N: usize, const K: usize> Logic
         for k in 0..K {
             self.planes[k].clock.next = self.clock.val();
             self.planes[k].valid_in.next = self.add_ol[0].valid_out.val();
+            self.planes[k].rst.next = self.rst.val();
             self.planes[k].tag_in.next = self.add_ol[0].tag_out.val();
             self.planes[k].n_0.next = self.plane_nx[k].val();
             self.planes[k].n_1.next = self.plane_ny[k].val();
@@ -929,7 +957,7 @@ impl<const E: usize, const M: usize, const N: usize, const K: usize> Logic
             self.leaf_ex[k].d.next = self.inf_n.val();
         }
         self.par_q26.d.next = self.par_any.val();
-        self.valid_q26.d.next = self.planes[0].valid_out.val();
+        self.valid_q26.d.next = self.planes[0].valid_out.val() & !self.rst.val();
         self.tag_q26.d.next = self.planes[0].tag_out.val();
 
         // Level 1: max(a, b) = a < b ? b : a on entries, min(a, b) = b < a ? b : a on exits.
@@ -994,7 +1022,7 @@ impl<const E: usize, const M: usize, const N: usize, const K: usize> Logic
             self.l1_ex[3].d.next = self.leaf_ex[6].q.val();
         }
         self.par_q27.d.next = self.par_q26.q.val();
-        self.valid_q27.d.next = self.valid_q26.q.val();
+        self.valid_q27.d.next = self.valid_q26.q.val() & !self.rst.val();
         self.tag_q27.d.next = self.tag_q26.q.val();
 
         // Level 2.
@@ -1031,7 +1059,7 @@ impl<const E: usize, const M: usize, const N: usize, const K: usize> Logic
             self.l2_ex[1].d.next = self.l1_ex[2].q.val();
         }
         self.par_q28.d.next = self.par_q27.q.val();
-        self.valid_q28.d.next = self.valid_q27.q.val();
+        self.valid_q28.d.next = self.valid_q27.q.val() & !self.rst.val();
         self.tag_q28.d.next = self.tag_q27.q.val();
 
         // Level 3.
@@ -1050,7 +1078,7 @@ impl<const E: usize, const M: usize, const N: usize, const K: usize> Logic
             self.l3_ex.d.next = self.l2_ex[0].q.val();
         }
         self.par_q29.d.next = self.par_q28.q.val();
-        self.valid_q29.d.next = self.valid_q28.q.val();
+        self.valid_q29.d.next = self.valid_q28.q.val() & !self.rst.val();
         self.tag_q29.d.next = self.tag_q28.q.val();
 
         // Merge with the slab (leftmost), and the hit as the AND of the four pairwise comparisons.
@@ -1082,7 +1110,7 @@ impl<const E: usize, const M: usize, const N: usize, const K: usize> Logic
             & self.cmp_hit[1].le.val()
             & self.cmp_hit[2].le.val()
             & self.cmp_hit[3].le.val();
-        self.valid_q30.d.next = self.valid_q29.q.val();
+        self.valid_q30.d.next = self.valid_q29.q.val() & !self.rst.val();
         self.tag_q30.d.next = self.tag_q29.q.val();
 
         self.valid_out.next = self.valid_q30.q.val();

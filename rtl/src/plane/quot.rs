@@ -168,6 +168,8 @@ pub struct PlaneFrac<
     const K: usize,
 > {
     pub clock: Signal<In, Clock>,
+    /// Synchronous reset: high at a clock edge clears every valid bit (data registers keep their values).
+    pub rst: Signal<In, Bit>,
     pub valid_in: Signal<In, Bit>,
     pub tag_in: Signal<In, Bits<TAG_BITS>>,
     pub ray_o_lo: [Signal<In, Bits<G>>; 3],
@@ -276,6 +278,7 @@ impl<
         let e = frac_scale(cf);
         Self {
             clock: Default::default(),
+            rst: Default::default(),
             valid_in: Default::default(),
             tag_in: Default::default(),
             ray_o_lo: Default::default(),
@@ -421,6 +424,10 @@ impl<
         self.clock.next = Clock { clk: high };
     }
 
+    fn set_reset(&mut self, on: bool) {
+        self.rst.next = on;
+    }
+
     fn drive(&mut self, test: Option<(u16, &NodeFixRay, &FixNode)>) {
         let Some((tag, r, n)) = test else {
             self.valid_in.next = false;
@@ -528,6 +535,7 @@ impl<
         // The slab tester, on the same inputs.
         self.slab.clock.next = self.clock.val();
         self.slab.valid_in.next = self.valid_in.val();
+        self.slab.rst.next = self.rst.val();
         self.slab.tag_in.next = self.tag_in.val();
         self.slab.ray_t_min.next = self.ray_t_min.val();
         self.slab.ray_t_max.next = self.ray_t_max.val();
@@ -619,7 +627,7 @@ impl<
         self.slab_en_q5.d.next = self.slab.t_entry.val();
         self.slab_ex_q5.d.next = self.slab.t_exit.val();
         self.slab_hit_q5.d.next = self.slab.hit.val();
-        self.valid_q5.d.next = self.slab.valid_out.val();
+        self.valid_q5.d.next = self.slab.valid_out.val() & !self.rst.val();
         self.tag_q5.d.next = self.slab.tag_out.val();
 
         // Stage 6: the merge with the slab's codes and the cull decision, comparisons in parallel.
@@ -673,7 +681,7 @@ impl<
                 | self.cx_pinf.val()
                 | (!self.cx_ninf.val() & !self.cx_pe.y.val()))
             & (!self.tree_en.v_out.val() | !self.tree_ex.v_out.val() | !self.px_pe.lt.val());
-        self.valid_q6.d.next = self.valid_q5.q.val();
+        self.valid_q6.d.next = self.valid_q5.q.val() & !self.rst.val();
         self.tag_q6.d.next = self.tag_q5.q.val();
 
         self.valid_out.next = self.valid_q6.q.val();

@@ -7,7 +7,7 @@
 //! `1 <= R <= min(M, 8)` (`golden::plane::float::CullFloatFormat::over` picks `min(M, 8)`).
 //!
 //! # Inputs / outputs
-//! `clock`, `valid_in`, `tag_in` (16 bits); `mag` (the sign bit is ignored: the model's `recip_float` reads
+//! `clock`, `rst` (synchronous, clears the valid bits), `valid_in`, `tag_in` (16 bits); `mag` (the sign bit is ignored: the model's `recip_float` reads
 //! exponent and fraction only), `upper` (1: an upper bound of `1/mag`, 0: a lower bound). Out, registered:
 //! `valid_out`, `tag_out`, `r`.
 //!
@@ -37,6 +37,8 @@ pub const RECIP_ADDR_BITS: usize = 8;
 #[derive(LogicBlock)]
 pub struct FpRecip<const E: usize, const M: usize, const N: usize> {
     pub clock: Signal<In, Clock>,
+    /// Synchronous reset: high at a clock edge clears every valid bit (data registers keep their values).
+    pub rst: Signal<In, Bit>,
     pub valid_in: Signal<In, Bit>,
     pub tag_in: Signal<In, Bits<TAG_BITS>>,
     pub mag: Signal<In, Bits<N>>,
@@ -101,6 +103,7 @@ impl<const E: usize, const M: usize, const N: usize> FpRecip<E, M, N> {
         let two_bias = (2 * f.bias()) as u64;
         Self {
             clock: Default::default(),
+            rst: Default::default(),
             valid_in: Default::default(),
             tag_in: Default::default(),
             mag: Default::default(),
@@ -176,7 +179,7 @@ impl<const E: usize, const M: usize, const N: usize> Logic for FpRecip<E, M, N> 
             self.r_q.d.next = (self.rbe.val() << self.frac_bits.val())
                 | (self.entry.val() & self.frac_mask.val());
         }
-        self.valid_q.d.next = self.valid_in.val();
+        self.valid_q.d.next = self.valid_in.val() & !self.rst.val();
         self.tag_q.d.next = self.tag_in.val();
         self.valid_out.next = self.valid_q.q.val();
         self.tag_out.next = self.tag_q.q.val();

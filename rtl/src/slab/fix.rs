@@ -17,7 +17,7 @@
 //! Rust cannot write `Bits<{G + 1}>`, hence `D` as a separate parameter, checked by [`SlabFix::new`].
 //!
 //! # Inputs
-//! - `clock`; `valid_in`, `tag_in` (16 bits, opaque, returned with the result);
+//! - `clock`; `rst` (synchronous reset: high at a clock edge, every valid bit is cleared and no test in flight leaves; data registers are not reset); `valid_in`, `tag_in` (16 bits, opaque, returned with the result);
 //! - `ray_*`: the fields of [`FixRay`] — origin interval `ray_o_lo`, `ray_o_hi`, inverse interval
 //!   `ray_m_lo`, `ray_m_hi`, signs `ray_neg` (arrays over x, y, z), `ray_t_min`, `ray_t_max`;
 //! - `box_*`: the fields of [`FixBox`] — `box_lo`, `box_hi`.
@@ -119,6 +119,8 @@ pub struct SlabFix<
     const CUTS: usize = SLAB_FIX_CUTS,
 > {
     pub clock: Signal<In, Clock>,
+    /// Synchronous reset: high at a clock edge clears every valid bit (data registers keep their values).
+    pub rst: Signal<In, Bit>,
     pub valid_in: Signal<In, Bit>,
     pub tag_in: Signal<In, Bits<TAG_BITS>>,
     pub ray_o_lo: [Signal<In, Bits<G>>; 3],
@@ -224,6 +226,7 @@ impl<const G: usize, const D: usize, const I: usize, const T: usize, const CUTS:
         );
         Self {
             clock: Default::default(),
+            rst: Default::default(),
             valid_in: Default::default(),
             tag_in: Default::default(),
             ray_o_lo: Default::default(),
@@ -325,6 +328,10 @@ impl<const G: usize, const D: usize, const I: usize, const T: usize, const CUTS:
         self.clock.next = Clock { clk: high };
     }
 
+    fn set_reset(&mut self, on: bool) {
+        self.rst.next = on;
+    }
+
     fn drive(&mut self, test: Option<(u16, &FixRay, &FixBox)>) {
         match test {
             Some((tag, r, b)) => {
@@ -418,7 +425,7 @@ impl<const G: usize, const D: usize, const I: usize, const T: usize, const CUTS:
         self.t_min_q1.d.next = self.ray_t_min.val();
         self.t_max_q1.d.next = self.ray_t_max.val();
         self.empty_q1.d.next = self.empty.val();
-        self.valid_q1.d.next = self.valid_in.val();
+        self.valid_q1.d.next = self.valid_in.val() & !self.rst.val();
         self.tag_q1.d.next = self.tag_in.val();
 
         // Operands: the inverse bound of each product picked by the sign of its distance.
@@ -439,7 +446,7 @@ impl<const G: usize, const D: usize, const I: usize, const T: usize, const CUTS:
         self.t_min_qo.d.next = self.t_min_q1.q.val();
         self.t_max_qo.d.next = self.t_max_q1.q.val();
         self.empty_qo.d.next = self.empty_q1.q.val();
-        self.valid_qo.d.next = self.valid_q1.q.val();
+        self.valid_qo.d.next = self.valid_q1.q.val() & !self.rst.val();
         self.tag_qo.d.next = self.tag_q1.q.val();
 
         // Products (registered inside the MulRounds at the product cut), rounded and saturated bounds.
@@ -454,12 +461,12 @@ impl<const G: usize, const D: usize, const I: usize, const T: usize, const CUTS:
         self.t_min_qp.d.next = self.t_min_qo.q.val();
         self.t_max_qp.d.next = self.t_max_qo.q.val();
         self.empty_qp.d.next = self.empty_qo.q.val();
-        self.valid_qp.d.next = self.valid_qo.q.val();
+        self.valid_qp.d.next = self.valid_qo.q.val() & !self.rst.val();
         self.tag_qp.d.next = self.tag_qo.q.val();
         self.t_min_q2.d.next = self.t_min_qp.q.val();
         self.t_max_q2.d.next = self.t_max_qp.q.val();
         self.empty_q2.d.next = self.empty_qp.q.val();
-        self.valid_q2.d.next = self.valid_qp.q.val();
+        self.valid_q2.d.next = self.valid_qp.q.val() & !self.rst.val();
         self.tag_q2.d.next = self.tag_qp.q.val();
 
         // First level of the max (entry) and min (exit) trees.
@@ -492,7 +499,7 @@ impl<const G: usize, const D: usize, const I: usize, const T: usize, const CUTS:
             self.exit_b_q3.d.next = self.exit_q2[2].q.val();
         }
         self.empty_q3.d.next = self.empty_q2.q.val();
-        self.valid_q3.d.next = self.valid_q2.q.val();
+        self.valid_q3.d.next = self.valid_q2.q.val() & !self.rst.val();
         self.tag_q3.d.next = self.tag_q2.q.val();
 
         // Final max/min and the hit decision.
@@ -516,7 +523,7 @@ impl<const G: usize, const D: usize, const I: usize, const T: usize, const CUTS:
             & ((self.entry.val() ^ self.sign_t.val()) <= (self.exit.val() ^ self.sign_t.val()))
             & (self.entry.val() != self.t_pinf.val())
             & (self.exit.val() != self.t_ninf.val());
-        self.valid_q4.d.next = self.valid_q3.q.val();
+        self.valid_q4.d.next = self.valid_q3.q.val() & !self.rst.val();
         self.tag_q4.d.next = self.tag_q3.q.val();
 
         self.valid_out.next = self.valid_q4.q.val();

@@ -2,7 +2,8 @@
 //! [`SLAB_FLOAT_LATENCY`] (9) clocks by default, [`slab_float_latency`]`(CUTS)` with the optional cut
 //! points of its units ([`cut`]; 13 clocks with all, [`SLAB_FLOAT_CUTS_DEEP`]). Bit for bit `golden::slab::float::slab_float` (read it for the arithmetic
 //! and the conservativeness argument); ports mirror `golden::slab::float::{FloatRay, FloatBox,
-//! SlabFloatOut}` as `SlabFix`'s mirror the fixed-point types.
+//! SlabFloatOut}` as `SlabFix`'s mirror the fixed-point types, with `clock`, `rst` (synchronous: high at
+//! a clock edge it clears every valid bit, units' included; data registers are not reset), `valid_in` and `tag_in`.
 //!
 //! # Parameters
 //! `E >= 4`, `M`, `N = 1 + E + M <= 32`; `CUTS`, the optional cut points ([`cut`], default none).
@@ -102,6 +103,8 @@ const _: () = assert!(SLAB_FLOAT_LATENCY <= 12);
 #[derive(LogicBlock)]
 pub struct SlabFloat<const E: usize, const M: usize, const N: usize, const CUTS: usize = 0> {
     pub clock: Signal<In, Clock>,
+    /// Synchronous reset: high at a clock edge clears every valid bit (data registers keep their values).
+    pub rst: Signal<In, Bit>,
     pub valid_in: Signal<In, Bit>,
     pub tag_in: Signal<In, Bits<TAG_BITS>>,
     pub ray_o_lo: [Signal<In, Bits<N>>; 3],
@@ -186,6 +189,7 @@ impl<const E: usize, const M: usize, const N: usize, const CUTS: usize> SlabFloa
         let muls = |mode| std::array::from_fn(|_| FpMul::with_cuts(mode, mc));
         Self {
             clock: Default::default(),
+            rst: Default::default(),
             valid_in: Default::default(),
             tag_in: Default::default(),
             ray_o_lo: Default::default(),
@@ -289,6 +293,10 @@ impl<const E: usize, const M: usize, const N: usize, const CUTS: usize> SlabIo
         self.clock.next = Clock { clk: high };
     }
 
+    fn set_reset(&mut self, on: bool) {
+        self.rst.next = on;
+    }
+
     fn drive(&mut self, test: Option<(u16, &FloatRay, &FloatBox)>) {
         match test {
             Some((tag, r, b)) => {
@@ -360,7 +368,9 @@ impl<const E: usize, const M: usize, const N: usize, const CUTS: usize> Logic
             self.m_lo_d[i].clock.next = self.clock.val();
             self.m_hi_d[i].clock.next = self.clock.val();
             self.add_e[i].valid_in.next = self.valid_in.val();
+            self.add_e[i].rst.next = self.rst.val();
             self.add_x[i].valid_in.next = self.valid_in.val();
+            self.add_x[i].rst.next = self.rst.val();
             self.add_e[i].tag_in.next = self.tag_in.val();
             self.add_x[i].tag_in.next = self.tag_in.val();
             if self.ray_neg[i].val() {
@@ -389,7 +399,9 @@ impl<const E: usize, const M: usize, const N: usize, const CUTS: usize> Logic
         // Stage 2: products, the inverse bound chosen by the sign of the distance.
         for i in 0..3 {
             self.mul_e[i].valid_in.next = self.add_e[i].valid_out.val();
+            self.mul_e[i].rst.next = self.rst.val();
             self.mul_x[i].valid_in.next = self.add_x[i].valid_out.val();
+            self.mul_x[i].rst.next = self.rst.val();
             self.mul_e[i].tag_in.next = self.add_e[i].tag_out.val();
             self.mul_x[i].tag_in.next = self.add_x[i].tag_out.val();
             self.mul_e[i].a.next = self.add_e[i].y.val();
@@ -425,7 +437,7 @@ impl<const E: usize, const M: usize, const N: usize, const CUTS: usize> Logic
         self.t_min_q7.d.next = self.t_min_d.q.val();
         self.t_max_q7.d.next = self.t_max_d.q.val();
         self.empty_q7.d.next = self.empty_d.q.val();
-        self.valid_q7.d.next = self.mul_e[0].valid_out.val();
+        self.valid_q7.d.next = self.mul_e[0].valid_out.val() & !self.rst.val();
         self.tag_q7.d.next = self.mul_e[0].tag_out.val();
 
         // Stage 4: first level of the trees (comparators read registers only).
@@ -458,7 +470,7 @@ impl<const E: usize, const M: usize, const N: usize, const CUTS: usize> Logic
             self.exit_b_q8.d.next = self.ex_q7[1].q.val();
         }
         self.empty_q8.d.next = self.empty_q7.q.val();
-        self.valid_q8.d.next = self.valid_q7.q.val();
+        self.valid_q8.d.next = self.valid_q7.q.val() & !self.rst.val();
         self.tag_q8.d.next = self.tag_q7.q.val();
 
         // Stage 5: entry = max(ea, eb), exit = min(xa, xb); entry <= exit is the AND of the four pairwise
@@ -494,7 +506,7 @@ impl<const E: usize, const M: usize, const N: usize, const CUTS: usize> Logic
             & (self.exit.val() != self.ninf.val());
         self.entry_q9.d.next = self.entry.val();
         self.exit_q9.d.next = self.exit.val();
-        self.valid_q9.d.next = self.valid_q8.q.val();
+        self.valid_q9.d.next = self.valid_q8.q.val() & !self.rst.val();
         self.tag_q9.d.next = self.tag_q8.q.val();
 
         self.valid_out.next = self.valid_q9.q.val();

@@ -207,6 +207,7 @@ pub fn bundle_in_word(
     );
     Ok(match base {
         "valid_in" => 1,
+        "rst" => 0,
         "tag_in" => tag as u64,
         "o_lo" => code(b.o_lo[idx], g),
         "o_hi" => code(b.o_hi[idx], g),

@@ -226,6 +226,7 @@ pub fn bundle_float_in_word(
     let (a, r) = input.sides();
     Ok(match base {
         "valid_in" => 1,
+        "rst" => 0,
         "tag_in" => tag as u64,
         "o_lo" => a.o_lo[idx] as u64,
         "o_hi" => a.o_hi[idx] as u64,

@@ -169,6 +169,7 @@ impl<M: Fn(&BundleFixFormat, &SplitJob, &RayStore) -> SplitResult> SplitPlan<M> 
         self.idle_clock(SplitIn {
             write: Some((a, r)),
             start: None,
+            reset: false,
         });
     }
 
@@ -192,6 +193,7 @@ impl<M: Fn(&BundleFixFormat, &SplitJob, &RayStore) -> SplitResult> SplitPlan<M> 
             SplitIn {
                 write,
                 start: Some(job),
+                reset: false,
             },
             SplitExpect {
                 ready: false,
@@ -232,6 +234,33 @@ impl<M: Fn(&BundleFixFormat, &SplitJob, &RayStore) -> SplitResult> SplitPlan<M> 
             let input = noise();
             self.busy(input);
         }
+    }
+
+    /// A reset clock with `input` (`rst` set high here; its write is taken, its start is not): the
+    /// running job, if any, is dropped and never reports.
+    pub fn reset(&mut self, mut input: SplitIn) {
+        input.reset = true;
+        self.running = None;
+        self.push(input, IDLE);
+    }
+
+    /// Starts `job`, plans `busy` of its busy clocks (fewer than it needs) with the input `noise` gives
+    /// each, then a reset clock with `noise`'s input, which drops the job: the reset comes at the latest
+    /// in the clock that would have reported.
+    pub fn run_job_reset(
+        &mut self,
+        job: SplitJob,
+        write: Option<(usize, FixBundle)>,
+        busy: u32,
+        mut noise: impl FnMut() -> SplitIn,
+    ) {
+        let clocks = self.start(job, write);
+        for _ in 0..busy.min(clocks - 2) {
+            let input = noise();
+            self.busy(input);
+        }
+        let input = noise();
+        self.reset(input);
     }
 
     /// The next planned clock.
@@ -279,6 +308,8 @@ pub struct SplitStim<M> {
     jobs_left: u64,
     plan: SplitPlan<M>,
     quiet: bool,
+    /// One job in six cut short by a reset ([`SplitStim::with_resets`]).
+    resets: bool,
 }
 
 impl<M: Fn(&BundleFixFormat, &SplitJob, &RayStore) -> SplitResult> SplitStim<M> {
@@ -294,7 +325,15 @@ impl<M: Fn(&BundleFixFormat, &SplitJob, &RayStore) -> SplitResult> SplitStim<M> 
             jobs_left: jobs,
             plan: SplitPlan::new(bf, model),
             quiet,
+            resets: false,
         }
+    }
+
+    /// The same stimulus with one job in six dropped by a reset in a random clock of it (its start
+    /// clock excluded, its report clock included), and now and then a reset between jobs.
+    pub fn with_resets(mut self) -> Self {
+        self.resets = true;
+        self
     }
 
     /// A quantised case: bundle, box pair, rays (1 to 16).
@@ -393,14 +432,24 @@ impl<M: Fn(&BundleFixFormat, &SplitJob, &RayStore) -> SplitResult> SplitStim<M> 
             boxes,
             active: self.active_mask(),
         };
+        let cut = self.resets && self.rng.gen_ratio(1, 6);
+        let busy = self.rng.gen_range(0..24);
+        if self.resets && self.rng.gen_ratio(1, 12) {
+            self.plan.reset(SplitIn::default());
+        }
         let (bf, n, quiet, rng) = (&self.bf, self.n, self.quiet, &mut self.rng);
-        self.plan.run_job(job, held, || {
+        let noise = || {
             if quiet {
                 SplitIn::default()
             } else {
                 busy_noise(bf, n, rng)
             }
-        });
+        };
+        if cut {
+            self.plan.run_job_reset(job, held, busy, noise);
+        } else {
+            self.plan.run_job(job, held, noise);
+        }
     }
 }
 
@@ -431,6 +480,8 @@ pub struct SplitStats {
     pub odd_splits: u64,
     pub full_splits: u64,
     pub back_to_back: u64,
+    /// Clocks with `rst` high.
+    pub resets: u64,
 }
 
 impl SplitStats {
@@ -445,6 +496,7 @@ impl SplitStats {
         self.odd_splits += o.odd_splits;
         self.full_splits += o.full_splits;
         self.back_to_back += o.back_to_back;
+        self.resets += o.resets;
     }
 
     fn count(&mut self, d: &SplitDone) {
@@ -509,6 +561,7 @@ pub fn run_split<S: BundleSplitIo>(
         if let Some(d) = &exp.done {
             stats.count(d);
         }
+        stats.resets += input.reset as u64;
         stats.cycles += 1;
     }
     Ok(stats)
@@ -535,6 +588,7 @@ pub fn split_in_word(bf: &BundleFixFormat, port: &str, input: &SplitIn) -> Resul
         "ray_d_hi" => code(r.d_hi[idx], d),
         "ray_t" => code(r.t_hi, t),
         "start" => input.start.is_some() as u64,
+        "rst" => input.reset as u64,
         "o_lo" => code(b.o_lo[idx], g),
         "o_hi" => code(b.o_hi[idx], g),
         "d_lo" => code(b.d_lo[idx], d),
@@ -608,6 +662,7 @@ where
         if let Some(d) = &exp.done {
             stats.count(d);
         }
+        stats.resets += input.reset as u64;
         Ok(())
     })?;
     stats.cycles = cycles;

@@ -159,6 +159,7 @@ pub fn in_word<C: SlabCtx>(
     };
     match base {
         "valid_in" => Ok(1),
+        "rst" => Ok(0),
         "tag_in" => Ok(tag as u64),
         _ => ctx
             .port_value(base, idx, r, b)

@@ -261,3 +261,30 @@ fn verilator_matches_rtl_and_model_bf16() {
 fn verilator_matches_rtl_and_model_fp32() {
     cross_simulate::<rtl::BundleFloatFp32>(200_000, 8);
 }
+
+/// Synchronous reset of the float pair (`tb::reset`), binary16: as for the fixed pair.
+#[test]
+fn reset_clears_every_valid_bit_fp16() {
+    type S = rtl::BundleFloatFp16;
+    let f = S::format();
+    let (v, _) = export(f);
+    let name = bundle_float_module(&f);
+    let h = tb::verilator::build(&v, &name, &tb::out_dir().join("verilator"))
+        .unwrap_or_else(|e| panic!("{e}"));
+    let s = with_big_stack(move || {
+        let tests: Vec<_> = bundle_float_vectors(f, 42, 300, false).flatten().collect();
+        let clocks = tb::reset::reset_stream(&tests, <S as rtl::SlabIo>::LATENCY, 42);
+        let vcd = tb::out_dir().join("vcd").join(format!("reset_{name}.vcd"));
+        let word = |p: &str, t: u16, x: &Option<_>| tb::bundle::pair_float::bundle_float_in_word(p, t, x);
+        tb::reset::reset_check(
+            || S::for_format(&f),
+            |i, p| bundle_float_model(&f, &(*i, *p)),
+            &clocks,
+            &vcd,
+            Some((&h, &word)),
+        )
+        .map_err(|e| format!("{name}: {e}\n  waveform (rust-hdl): {}", vcd.display()))
+    })
+    .unwrap_or_else(|e| panic!("{e}"));
+    s.both_sides().unwrap_or_else(|e| panic!("{e}"));
+}

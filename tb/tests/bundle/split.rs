@@ -304,3 +304,29 @@ fn verilator_matches_model_and_rtl_b12() {
 fn verilator_matches_model_and_rtl_b16() {
     cross_simulate::<rtl::BundleSplitB16>(preset(2), 300_000, 100_000, 7);
 }
+
+/// Synchronous reset: one job in six dropped by `rst` in a random clock of it (the report clock
+/// included), resets between jobs, and starts and writes in the reset clocks; the dropped job never
+/// reports, the block is ready after the reset, and every other job reports the model's result on
+/// time, in the rust-hdl simulation and in Verilator (every clock against rust-hdl).
+#[test]
+fn reset_drops_the_job_in_progress_b12() {
+    let bf = preset(1);
+    let jobs = 3_000;
+    let mut dut = SplitRtl::<rtl::BundleSplitB12>::new(&bf);
+    let stats = run_split(&mut dut, SplitStim::new(bf, 51, jobs, false, split_model).with_resets())
+        .unwrap_or_else(|e| panic!("{}: {e}", bf.name()));
+    assert!(stats.resets > jobs / 10, "{stats:?}");
+    assert!(stats.jobs < jobs && stats.jobs > jobs / 2, "{stats:?}");
+    let (v, _) = export::<rtl::BundleSplitB12>(&bf);
+    let h = tb::verilator::build(&v, &bundle_split_module(&bf), &tb::out_dir().join("verilator"))
+        .unwrap_or_else(|e| panic!("{e}"));
+    let x = split_xsim::<rtl::BundleSplitB12, _>(
+        bf,
+        &h,
+        SplitStim::new(bf, 51, jobs, false, split_model).with_resets(),
+        u64::MAX,
+    )
+    .unwrap_or_else(|e| panic!("{}: {e}", bf.name()));
+    assert_eq!(x, stats);
+}

@@ -313,3 +313,21 @@ fn verilator_matches_rtl_and_model_b12_k4() {
 fn verilator_matches_rtl_and_model_b16_k4() {
     cross_simulate::<rtl::PlaneFracB16<4>>(FixFormat::b16(), 50_000, 2_000, 25);
 }
+
+/// Synchronous reset of the fraction option (`tb::reset`), as for the table option.
+#[test]
+fn reset_clears_every_valid_bit_b12_k1() {
+    let c = FracCtx::new(FixFormat::b12(), 1);
+    let (v, _) = export::<rtl::PlaneFracB12<1>>(&c);
+    let tests: Vec<_> = c.vectors(33, 400).flatten().collect();
+    let s = tb::reset::check_block(
+        c,
+        || rtl::PlaneFracB12::<1>::for_format(c.cf()),
+        &tests,
+        &c.name(),
+        &v,
+        33,
+    )
+    .unwrap_or_else(|e| panic!("{e}"));
+    s.both_sides().unwrap_or_else(|e| panic!("{}: {e}", c.name()));
+}

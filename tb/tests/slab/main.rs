@@ -11,4 +11,5 @@ mod float_corners;
 mod float_equivalence;
 mod float_verilog;
 mod mul_round;
+mod reset;
 mod vcd;
