@@ -1116,7 +1116,8 @@ mod tests {
     #[test]
     fn pipeline_harness_delays_by_the_latency() {
         let h = pipeline_harness("m", 3);
-        assert!(h.contains("v3 <= v2;") && h.contains("assert(valid_out == v3)"));
+        assert!(h.contains("v3 <= v2 & !rst;") && h.contains("assert(valid_out == v3)"));
+        assert!(h.contains(".rst(rst)") && h.contains("v1 <= valid_in & !rst;"));
         assert!(!h.contains("v4"));
     }
 
