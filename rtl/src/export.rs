@@ -501,7 +501,8 @@ mod plain_tests {
 
     #[test]
     fn names_in_different_modules_do_not_collide() {
-        let v = "module top(a);\n  wire r$q;\nendmodule\nmodule top$u(b);\n  wire r_q;\nendmodule\n";
+        let v =
+            "module top(a);\n  wire r$q;\nendmodule\nmodule top$u(b);\n  wire r_q;\nendmodule\n";
         assert!(plain_verilog(v).is_ok());
         let e = plain_verilog("module top(a);\n  wire r$q;\n  wire r_q;\nendmodule\n").unwrap_err();
         assert!(e.contains("r$q"), "{e}");

@@ -734,9 +734,7 @@ pub fn pipeline_proofs(
     if mutant {
         let reg = valid_register(text, module).map_err(|e| format!("mutant of {module}: {e}"))?;
         let local = reg.strip_prefix(&format!("{module}_")).unwrap_or(&reg);
-        let what = format!(
-            "one register removed: the last valid register ({local}) a wire"
-        );
+        let what = format!("one register removed: the last valid register ({local}) a wire");
         let changed =
             bypass_register(text, &reg).map_err(|e| format!("mutant of {module}: {e}"))?;
         v.push(mutant_with(&p, "reg", &what, changed));
@@ -779,7 +777,9 @@ pub fn valid_sites(text: &str, module: &str) -> Result<Vec<(String, String)>, St
         } else if let Some(reg) = term.strip_suffix("_q") {
             v.push((module.to_string(), reg.to_string()));
         } else {
-            return Err(format!("{module}: valid_out = {rhs} is not a register output"));
+            return Err(format!(
+                "{module}: valid_out = {rhs} is not a register output"
+            ));
         }
     }
     Ok(v)

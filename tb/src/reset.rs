@@ -44,7 +44,9 @@ impl ResetStats {
         {
             Ok(())
         } else {
-            Err(format!("the stream did not exercise both sides of the reset rule: {self:?}"))
+            Err(format!(
+                "the stream did not exercise both sides of the reset rule: {self:?}"
+            ))
         }
     }
 }
@@ -135,7 +137,11 @@ where
         words.push(
             outputs
                 .iter()
-                .map(|p| sim.uut.output_word(p).ok_or_else(|| format!("no output {p}")))
+                .map(|p| {
+                    sim.uut
+                        .output_word(p)
+                        .ok_or_else(|| format!("no output {p}"))
+                })
                 .collect::<Result<_, _>>()?,
         );
         let due = match flight.front() {
@@ -242,6 +248,12 @@ where
         .join("vcd")
         .join(format!("reset_{module}.vcd"));
     let word = |p: &str, t: u16, x: &Option<(C::Ray, C::Box)>| in_word(&ctx, p, t, x);
-    reset_check(make, |r, b| ctx.model(r, b), &clocks, &vcd, Some((&h, &word)))
-        .map_err(|e| format!("{module}: {e}\n  waveform (rust-hdl): {}", vcd.display()))
+    reset_check(
+        make,
+        |r, b| ctx.model(r, b),
+        &clocks,
+        &vcd,
+        Some((&h, &word)),
+    )
+    .map_err(|e| format!("{module}: {e}\n  waveform (rust-hdl): {}", vcd.display()))
 }

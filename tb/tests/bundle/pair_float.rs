@@ -275,7 +275,8 @@ fn reset_clears_every_valid_bit_fp16() {
         let tests: Vec<_> = bundle_float_vectors(f, 42, 300, false).flatten().collect();
         let clocks = tb::reset::reset_stream(&tests, <S as rtl::SlabIo>::LATENCY, 42);
         let vcd = tb::out_dir().join("vcd").join(format!("reset_{name}.vcd"));
-        let word = |p: &str, t: u16, x: &Option<_>| tb::bundle::pair_float::bundle_float_in_word(p, t, x);
+        let word =
+            |p: &str, t: u16, x: &Option<_>| tb::bundle::pair_float::bundle_float_in_word(p, t, x);
         tb::reset::reset_check(
             || S::for_format(&f),
             |i, p| bundle_float_model(&f, &(*i, *p)),

@@ -314,13 +314,20 @@ fn reset_drops_the_job_in_progress_b12() {
     let bf = preset(1);
     let jobs = 3_000;
     let mut dut = SplitRtl::<rtl::BundleSplitB12>::new(&bf);
-    let stats = run_split(&mut dut, SplitStim::new(bf, 51, jobs, false, split_model).with_resets())
-        .unwrap_or_else(|e| panic!("{}: {e}", bf.name()));
+    let stats = run_split(
+        &mut dut,
+        SplitStim::new(bf, 51, jobs, false, split_model).with_resets(),
+    )
+    .unwrap_or_else(|e| panic!("{}: {e}", bf.name()));
     assert!(stats.resets > jobs / 10, "{stats:?}");
     assert!(stats.jobs < jobs && stats.jobs > jobs / 2, "{stats:?}");
     let (v, _) = export::<rtl::BundleSplitB12>(&bf);
-    let h = tb::verilator::build(&v, &bundle_split_module(&bf), &tb::out_dir().join("verilator"))
-        .unwrap_or_else(|e| panic!("{e}"));
+    let h = tb::verilator::build(
+        &v,
+        &bundle_split_module(&bf),
+        &tb::out_dir().join("verilator"),
+    )
+    .unwrap_or_else(|e| panic!("{e}"));
     let x = split_xsim::<rtl::BundleSplitB12, _>(
         bf,
         &h,

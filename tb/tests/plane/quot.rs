@@ -329,5 +329,6 @@ fn reset_clears_every_valid_bit_b12_k1() {
         33,
     )
     .unwrap_or_else(|e| panic!("{e}"));
-    s.both_sides().unwrap_or_else(|e| panic!("{}: {e}", c.name()));
+    s.both_sides()
+        .unwrap_or_else(|e| panic!("{}: {e}", c.name()));
 }
