@@ -299,6 +299,212 @@ pub fn export_all(dir: &Path) -> std::io::Result<Vec<PathBuf>> {
     Ok(out)
 }
 
+/// The block family and configuration of an exported module: what a testbench, an encoder or a datasheet
+/// needs to know of it beyond its ports.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub enum Family {
+    /// The fixed slab tester of a format, with its cut points.
+    SlabFix { fmt: FixFormat, cuts: usize },
+    /// The float slab tester of a format, with its cut points.
+    SlabFloat {
+        f: golden::format::float::FloatFormat,
+        cuts: usize,
+    },
+    /// The fixed chained slab + cull-plane tester, table option, `k` planes; `deep` is the 11-clock depth.
+    PlaneFix {
+        cf: CullFixFormat,
+        k: usize,
+        deep: bool,
+    },
+    /// The fixed chained slab + cull-plane tester, fraction option, `k` planes.
+    PlaneFrac { cf: CullFixFormat, k: usize },
+    /// The float chained slab + cull-plane tester, `k` planes.
+    PlaneFloat { cf: CullFloatFormat, k: usize },
+    /// The fixed AllHit / AnyHit bundle pair.
+    BundleFix {
+        bf: golden::bundle::fix::BundleFixFormat,
+    },
+    /// The float AllHit / AnyHit bundle pair.
+    BundleFloat {
+        f: golden::format::float::FloatFormat,
+    },
+    /// The bundle results processor (jobs over several clocks, not one test a clock).
+    BundleSplit {
+        bf: golden::bundle::fix::BundleFixFormat,
+    },
+}
+
+/// One exported module of the catalogue: its name, its latency in clocks (for the results processor,
+/// the clocks of a decided job) and its family. The Verilog is made on demand ([`Exported::verilog`]).
+#[derive(Clone, Debug, PartialEq)]
+pub struct Exported {
+    pub module: String,
+    pub latency: usize,
+    pub family: Family,
+}
+
+impl Exported {
+    /// One test a clock (every module but the results processor).
+    pub fn pipelined(&self) -> bool {
+        !matches!(self.family, Family::BundleSplit { .. })
+    }
+
+    /// The module's Verilog, exactly as [`export_all`] writes it.
+    pub fn verilog(&self) -> String {
+        let pick = |v: Vec<(String, String, usize)>| {
+            v.into_iter()
+                .find(|(m, _, _)| *m == self.module)
+                .map(|(_, v, _)| v)
+                .unwrap_or_else(|| panic!("{} is in the catalogue but not exported", self.module))
+        };
+        match self.family {
+            Family::SlabFix { fmt, cuts } if cuts == crate::slab::fix::SLAB_FIX_CUTS => {
+                slab_fix_verilog(&fmt).expect("presets are instantiated")
+            }
+            Family::SlabFix { .. } => pick(slab_fix_deep_verilog()),
+            Family::SlabFloat { f, cuts: 0 } => slab_float_verilog(&f).expect("instantiated"),
+            Family::SlabFloat { .. } => pick(slab_float_deep_verilog()),
+            Family::PlaneFix { .. } | Family::PlaneFrac { .. } | Family::PlaneFloat { .. } => {
+                pick(plane_verilog())
+            }
+            Family::BundleFix { .. } => pick(crate::bundle::pair_fix::bundle_fix_verilog()),
+            Family::BundleFloat { f } => {
+                crate::bundle::pair_float::bundle_float_verilog(&f).expect("instantiated")
+            }
+            Family::BundleSplit { .. } => pick(crate::bundle::split::bundle_split_verilog()),
+        }
+    }
+}
+
+/// Every module [`export_all`] writes, in the same order, with its family: the one list the encoder,
+/// the datasheets and the packaging read (a test checks it against the export).
+pub fn catalog() -> Vec<Exported> {
+    use crate::slab::fix::{SLAB_FIX_CUTS, SLAB_FIX_CUTS_DEEP};
+    use crate::slab::float::SLAB_FLOAT_CUTS_DEEP;
+    let mut v = vec![];
+    let mut add = |module: String, latency: usize, family: Family| {
+        v.push(Exported {
+            module,
+            latency,
+            family,
+        })
+    };
+    for fmt in FixFormat::presets() {
+        add(
+            slab_fix_module(&fmt),
+            crate::SLAB_FIX_LATENCY,
+            Family::SlabFix {
+                fmt,
+                cuts: SLAB_FIX_CUTS,
+            },
+        );
+    }
+    for fmt in FixFormat::presets() {
+        add(
+            slab_fix_module_cuts(&fmt, SLAB_FIX_CUTS_DEEP),
+            crate::slab::fix::slab_fix_latency(SLAB_FIX_CUTS_DEEP),
+            Family::SlabFix {
+                fmt,
+                cuts: SLAB_FIX_CUTS_DEEP,
+            },
+        );
+    }
+    for f in crate::SLAB_FLOAT_FORMATS {
+        add(
+            slab_float_module(&f),
+            crate::SLAB_FLOAT_LATENCY,
+            Family::SlabFloat { f, cuts: 0 },
+        );
+    }
+    for f in crate::SLAB_FLOAT_FORMATS {
+        add(
+            slab_float_module_cuts(&f, SLAB_FLOAT_CUTS_DEEP),
+            crate::slab::float::slab_float_latency(SLAB_FLOAT_CUTS_DEEP),
+            Family::SlabFloat {
+                f,
+                cuts: SLAB_FLOAT_CUTS_DEEP,
+            },
+        );
+    }
+    let presets = FixFormat::presets().map(CullFixFormat::over);
+    for deep in [false, true] {
+        for cf in presets {
+            for k in [1, 4] {
+                let (s, p, _) = crate::plane::fix::PLANE_FIX_DEPTHS[deep as usize];
+                add(
+                    plane_fix_module_cuts(&cf, k, s, p),
+                    crate::plane::fix::plane_fix_latency(s, p),
+                    Family::PlaneFix { cf, k, deep },
+                );
+            }
+        }
+    }
+    for cf in &presets[1..] {
+        for k in [1, 4] {
+            add(
+                plane_frac_module(cf, k),
+                crate::plane::quot::PLANE_FRAC_LATENCY,
+                Family::PlaneFrac { cf: *cf, k },
+            );
+        }
+    }
+    for (f, k) in crate::plane::float_export::PLANE_FLOAT_CONFIGS {
+        if k == 1 {
+            let cf = CullFloatFormat::over(f);
+            add(
+                crate::plane::float_export::plane_float_module(&cf, k),
+                crate::PLANE_FLOAT_LATENCY,
+                Family::PlaneFloat { cf, k },
+            );
+        }
+    }
+    for bf in golden::bundle::fix::BundleFixFormat::presets() {
+        add(
+            crate::bundle::pair_fix::bundle_fix_module(&bf),
+            crate::bundle::pair_fix::BUNDLE_FIX_LATENCY,
+            Family::BundleFix { bf },
+        );
+    }
+    for bf in &golden::bundle::fix::BundleFixFormat::presets()[1..] {
+        add(
+            crate::bundle::split::bundle_split_module(bf),
+            crate::bundle::pair_fix::BUNDLE_FIX_LATENCY + 1,
+            Family::BundleSplit { bf: *bf },
+        );
+    }
+    for f in crate::BUNDLE_FLOAT_FORMATS {
+        add(
+            crate::bundle::pair_float::bundle_float_module(&f),
+            crate::bundle::pair_float::BUNDLE_FLOAT_LATENCY,
+            Family::BundleFloat { f },
+        );
+    }
+    v
+}
+
+/// The catalogue entry of `module`, or an error naming it and the closest exported names.
+pub fn find(module: &str) -> Result<Exported, String> {
+    let all = catalog();
+    if let Some(e) = all.iter().find(|e| e.module == module) {
+        return Ok(e.clone());
+    }
+    let stem = module.split('_').take(2).collect::<Vec<_>>().join("_");
+    let near: Vec<&str> = all
+        .iter()
+        .map(|e| e.module.as_str())
+        .filter(|m| m.starts_with(&stem))
+        .collect();
+    let list = if near.is_empty() {
+        all.iter().map(|e| e.module.as_str()).collect::<Vec<_>>()
+    } else {
+        near
+    };
+    Err(format!(
+        "module `{module}` is not an exported module; exported are: {}",
+        list.join(", ")
+    ))
+}
+
 /// Module name of the table option of the fixed cull-plane tester at its default depth, e.g.
 /// `plane_fix_g12_i16f11_t20f6_n8_fd11_r8_k4` (the testbenches' name).
 pub fn plane_fix_module(cf: &CullFixFormat, k: usize) -> String {
@@ -519,5 +725,56 @@ mod plain_tests {
         assert_eq!(split_port("ray_o_lo_2"), ("ray_o_lo", Some(2)));
         assert_eq!(split_port("ray_t_min"), ("ray_t_min", None));
         assert_eq!(split_port("hit"), ("hit", None));
+    }
+}
+
+#[cfg(test)]
+mod catalog_tests {
+    use super::*;
+
+    #[test]
+    fn the_catalogue_lists_what_the_export_writes_with_the_same_latencies() {
+        // rust-hdl's Verilog generation of the cull-plane testers recurses deeper than a test thread's
+        // stack.
+        std::thread::Builder::new()
+            .stack_size(256 << 20)
+            .spawn(catalogue_matches_export)
+            .unwrap()
+            .join()
+            .unwrap();
+    }
+
+    fn catalogue_matches_export() {
+        let dir = std::env::temp_dir().join(format!("rtu_catalog_{}", std::process::id()));
+        export_all(&dir).unwrap();
+        let written = std::fs::read_to_string(dir.join("latency.csv")).unwrap();
+        let listed: String = std::iter::once("module,latency\n".to_string())
+            .chain(
+                catalog()
+                    .iter()
+                    .map(|e| format!("{},{}\n", e.module, e.latency)),
+            )
+            .collect();
+        assert_eq!(written, listed);
+        // Each entry's Verilog is the file the export wrote (spot check across families).
+        for e in catalog().iter().step_by(7) {
+            let v = std::fs::read_to_string(dir.join(format!("{}.v", e.module))).unwrap();
+            assert!(v == e.verilog(), "{}", e.module);
+        }
+        std::fs::remove_dir_all(&dir).ok();
+    }
+
+    #[test]
+    fn an_unknown_module_is_an_error_naming_the_near_ones() {
+        let e = find("slab_fix_g13_i16f11_t20f6").unwrap_err();
+        assert!(e.contains("`slab_fix_g13_i16f11_t20f6`"), "{e}");
+        assert!(
+            e.contains("slab_fix_g12_i16f11_t20f6") && !e.contains("bundle_"),
+            "{e}"
+        );
+        assert_eq!(
+            find("slab_fix_g12_i16f11_t20f6_p6").unwrap().latency,
+            crate::slab::fix::slab_fix_latency(crate::slab::fix::SLAB_FIX_CUTS_DEEP)
+        );
     }
 }
