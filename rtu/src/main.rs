@@ -7,6 +7,8 @@ mod bundle_cmd;
 mod campaign_cmd;
 mod chart;
 mod cull_cmd;
+mod encode_cmd;
+mod export_cmd;
 mod fit_cmd;
 mod float_check;
 mod formal_cmd;
@@ -54,8 +56,9 @@ enum Cmd {
         #[arg(long)]
         scene: Option<String>,
     },
-    /// Write one Verilog file per block and preset configuration into <out>/verilog.
-    Export,
+    /// Write one Verilog file per block and preset configuration into <out>/verilog, each with its
+    /// datasheet (<module>.md) and FuseSoC core file (<module>.core).
+    Export(export_cmd::Args),
     /// Run a file of rays and boxes (JSON lines or CSV) through a tester and write the results.
     Run {
         /// Input vectors (`.csv` is CSV, anything else JSON lines; `-` reads JSON lines from stdin).
@@ -87,6 +90,13 @@ enum Cmd {
         #[arg(long)]
         bundles: bool,
     },
+    /// World-space vectors (the files of `run`) as the words on an exported core's ports: one line per
+    /// test, a hex word per port (<prefix>.in.hex), the model's expected output words (<prefix>.out.hex)
+    /// and the packed words for $readmemh (<prefix>.mem).
+    Encode(encode_cmd::EncodeArgs),
+    /// Output words captured from a simulation of an exported core, back to world-space results, written
+    /// as `run` writes them.
+    Decode(encode_cmd::DecodeArgs),
     /// Write generated vectors (uniform, adversarial or mixed) to a file, for `run` or other tools.
     Gen {
         #[arg(long, default_value = "mixed")]
@@ -244,13 +254,12 @@ fn main() -> ExitCode {
                 })
                 .and_then(|x| x)
         }
-        Cmd::Export => rtl::export::export_all(&cli.out.join("verilog"))
+        Cmd::Export(a) => export_cmd::export(&cli.out.join("verilog"), a.datasheets.as_deref())
             .map(|ps| {
                 for p in ps {
                     println!("{}", p.display());
                 }
-            })
-            .map_err(|e| e.to_string()),
+            }),
         Cmd::Run {
             input,
             output,
@@ -302,6 +311,8 @@ fn main() -> ExitCode {
             seed,
             output,
         } => run_vectors::gen(kind, n, seed, output.as_deref()),
+        Cmd::Encode(a) => encode_cmd::encode(&a, &cli.out).map(|s| eprintln!("{s}")),
+        Cmd::Decode(a) => encode_cmd::decode(&a),
         Cmd::Campaign(a) => campaign_cmd::run(&a, &cli.out),
         Cmd::FloatCheck(a) => float_check::run(&a, &cli.out),
         Cmd::Bench(a) => bench::run(&a, &cli.out),

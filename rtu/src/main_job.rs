@@ -242,8 +242,26 @@ pub fn run(scene: &Scene, out: &Path) -> Result<(Vec<Row>, String), String> {
 
     // Verilog and a waveform of the first tests through the b12 tester.
     let vdir = out.join("verilog");
-    let written = rtl::export::export_all(&vdir).map_err(|e| format!("{}: {e}", vdir.display()))?;
+    let written: Vec<_> = crate::export_cmd::export(&vdir, None)?
+        .into_iter()
+        .filter(|p| p.extension().is_some_and(|x| x == "v"))
+        .collect();
     let vcd = out.join("vcd").join(format!("{}_b12.vcd", scene.name));
+    {
+        // A GTKWave save file beside the waveform: ports and stage registers grouped by stage.
+        let m = rtl::export::slab_fix_module(&FixFormat::b12());
+        let v = std::fs::read_to_string(vdir.join(format!("{m}.v"))).map_err(|e| e.to_string())?;
+        let name = vcd
+            .file_name()
+            .expect("a file")
+            .to_string_lossy()
+            .into_owned();
+        std::fs::create_dir_all(out.join("vcd")).map_err(|e| e.to_string())?;
+        crate::out_file::write_file(
+            &vcd.with_extension("gtkw"),
+            tb::ip::package::gtkw_save(&m, &v, &name, "uut")?,
+        )?;
+    }
     {
         let fmt = FixFormat::b12();
         let map = GridMap::for_bounds(fmt, lo, hi).map_err(|e| e.to_string())?;

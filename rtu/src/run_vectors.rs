@@ -39,7 +39,7 @@ pub(crate) fn parse_bounds(s: &str) -> Result<(DVec3, DVec3), String> {
 }
 
 /// The whole input as bytes (so stdin can be read twice).
-fn slurp(input: &Path) -> Result<Vec<u8>, String> {
+pub(crate) fn slurp(input: &Path) -> Result<Vec<u8>, String> {
     let mut buf = vec![];
     if input == Path::new("-") {
         std::io::stdin()
@@ -53,7 +53,7 @@ fn slurp(input: &Path) -> Result<Vec<u8>, String> {
     Ok(buf)
 }
 
-fn vectors_of(
+pub(crate) fn vectors_of(
     bytes: Arc<Vec<u8>>,
     fmt: VecFormat,
     src: String,
@@ -189,7 +189,11 @@ fn emit(
 }
 
 /// Bounds of the origins and non-empty boxes of a vector file (validating every line on the way).
-fn file_bounds(bytes: Arc<Vec<u8>>, vfmt: VecFormat, src: &str) -> Result<(DVec3, DVec3), String> {
+pub(crate) fn file_bounds(
+    bytes: Arc<Vec<u8>>,
+    vfmt: VecFormat,
+    src: &str,
+) -> Result<(DVec3, DVec3), String> {
     let mut lo = DVec3::splat(f64::INFINITY);
     let mut hi = DVec3::splat(f64::NEG_INFINITY);
     for v in vectors_of(bytes, vfmt, src.to_string()) {

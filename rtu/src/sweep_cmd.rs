@@ -208,6 +208,9 @@ fn default_table(rel: &str) -> Option<PathBuf> {
 pub struct Timing {
     pub fmax_mhz: f64,
     pub lut4: u64,
+    /// Flip-flops and MULT18X18D blocks, when the table has the columns `ff` and `mult18`.
+    pub ff: Option<u64>,
+    pub mult18: Option<u64>,
 }
 
 /// The timing table: the file given (which must exist), or by default `docs/timing/timing.csv` (found
@@ -244,6 +247,7 @@ pub fn read_timing(path: &Path) -> Result<HashMap<String, Timing>, String> {
         })
     };
     let (im, il, ifm) = (col("module")?, col("lut4")?, col("fmax_mhz")?);
+    let (iff, imu) = (col("ff").ok(), col("mult18").ok());
     let mut t = HashMap::new();
     for (n, line) in lines {
         let bad = |what: String| format!("{}:{}: {what}", path.display(), n + 1);
@@ -268,7 +272,23 @@ pub fn read_timing(path: &Path) -> Result<HashMap<String, Timing>, String> {
                     f[ifm]
                 ))
             })?;
-        t.insert(f[im].to_string(), Timing { fmax_mhz, lut4 });
+        let count = |i: Option<usize>, name: &str| -> Result<Option<u64>, String> {
+            i.map(|i| {
+                f[i].parse::<u64>()
+                    .map_err(|_| bad(format!("column `{name}`: `{}` is not a count", f[i])))
+            })
+            .transpose()
+        };
+        let (ff, mult18) = (count(iff, "ff")?, count(imu, "mult18")?);
+        t.insert(
+            f[im].to_string(),
+            Timing {
+                fmax_mhz,
+                lut4,
+                ff,
+                mult18,
+            },
+        );
     }
     Ok(t)
 }
@@ -802,6 +822,8 @@ pub fn measure(a: &Args) -> Result<(Vec<Rec>, HashMap<String, f64>), String> {
                         .map(|v| Timing {
                             fmax_mhz: v.iter().map(|t| t.fmax_mhz).fold(f64::INFINITY, f64::min),
                             lut4: v.iter().map(|t| t.lut4).sum(),
+                            ff: None,
+                            mult18: None,
                         });
                     done += 1;
                     eprintln!(
@@ -1215,7 +1237,9 @@ mod tests {
             t["m"],
             Timing {
                 fmax_mhz: 145.6,
-                lut4: 493
+                lut4: 493,
+                ff: Some(766),
+                mult18: Some(6),
             }
         );
         assert_eq!(t["q"].fmax_mhz, 5.0);

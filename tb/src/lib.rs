@@ -27,6 +27,7 @@ pub mod campaign;
 pub mod dut;
 pub mod engine;
 pub mod formal;
+pub mod ip;
 pub mod plane;
 pub mod prop;
 pub mod reset;
