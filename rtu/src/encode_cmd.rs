@@ -29,7 +29,8 @@ pub struct EncodeArgs {
     /// The exported module, e.g. slab_fix_g12_i16f11_t20f6 (`rtu export` lists them).
     #[arg(long)]
     pub module: String,
-    /// Vectors in world space, as `rtu run` reads them (`.csv` is CSV, anything else JSON lines).
+    /// Vectors in world space, as `rtu run` reads them (`.csv` is CSV, anything else JSON lines); for a
+    /// bundle pair, bundle vectors as `rtu run --bundles` reads them.
     pub input: PathBuf,
     /// Prefix of the files written: <prefix>.in.hex, <prefix>.out.hex, <prefix>.mem (default
     /// <out>/encode/<module>).
@@ -69,8 +70,9 @@ fn module(name: &str) -> Result<(Exported, Vec<Port>), String> {
     Ok((e, ports))
 }
 
-/// Whether the encoder takes a module: the pipelined testers (the results processor takes jobs over
-/// several clocks) of the slab and cull-plane families.
+/// Whether the encoder takes a module: the pipelined testers of the slab, cull-plane (table option)
+/// and bundle pair families (the results processor takes jobs over several clocks; the fraction option
+/// reports exact quotients, not t codes).
 fn encodable(e: &Exported) -> Result<(), String> {
     let name = &e.module;
     if !e.pipelined() {
@@ -85,15 +87,6 @@ fn encodable(e: &Exported) -> Result<(), String> {
             "module `{name}`: the fraction option reports its interval as exact quotients \
              (`num`, `den`, ...), not as t codes; encode and decode take the table option \
              (plane_fix_..._r8_k*) and the other slab and cull-plane testers"
-        ));
-    }
-    if matches!(
-        e.family,
-        Family::BundleFix { .. } | Family::BundleFloat { .. }
-    ) {
-        return Err(format!(
-            "module `{name}`: encode and decode take the slab and cull-plane testers; the bundle \
-             pair's words are not encoded yet"
         ));
     }
     Ok(())
@@ -246,6 +239,19 @@ fn head(s: &Setup, what: &str) -> Vec<String> {
 
 /// `rtu encode`: writes the three word files and returns a summary line.
 pub fn encode(a: &EncodeArgs, out: &Path) -> Result<String, String> {
+    if is_bundle(&a.module)? {
+        let b = bundle_setup(&a.module, &a.input, a.bounds.as_deref())?;
+        let (ri, ro) = bundle_rows(&b)?;
+        return write_words(
+            &b.e,
+            a.output.as_deref(),
+            out,
+            &b.head(),
+            &b.ports,
+            &ri,
+            &ro,
+        );
+    }
     let s = setup(&a.module, &a.input, a.bounds.as_deref())?;
     let ins = words::columns(&s.ports, true);
     let outs = words::columns(&s.ports, false);
@@ -260,49 +266,66 @@ pub fn encode(a: &EncodeArgs, out: &Path) -> Result<String, String> {
         }
         (ri, ro)
     });
-    let prefix = a
-        .output
-        .clone()
-        .unwrap_or_else(|| out.join("encode").join(&s.e.module));
+    let h = |what: &str| head(&s, what);
+    write_words(
+        &s.e,
+        a.output.as_deref(),
+        out,
+        &h,
+        &s.ports,
+        &rows_in,
+        &rows_out,
+    )
+}
+
+/// Writes `<prefix>.in.hex`, `.out.hex` and `.mem` (prefix: `output`, or `<out>/encode/<module>`), each
+/// headed by `head(what the file holds)`.
+fn write_words(
+    e: &Exported,
+    output: Option<&Path>,
+    out: &Path,
+    head: &dyn Fn(&str) -> Vec<String>,
+    ports: &[Port],
+    rows_in: &[Vec<u64>],
+    rows_out: &[Vec<u64>],
+) -> Result<String, String> {
+    let ins = words::columns(ports, true);
+    let outs = words::columns(ports, false);
+    let prefix = output
+        .map(Path::to_path_buf)
+        .unwrap_or_else(|| out.join("encode").join(&e.module));
     if let Some(d) = prefix.parent().filter(|d| !d.as_os_str().is_empty()) {
         std::fs::create_dir_all(d).map_err(|e| format!("{}: {e}", d.display()))?;
     }
     let file = |ext: &str| PathBuf::from(format!("{}.{ext}", prefix.display()));
     write_file(
         &file("in.hex"),
-        words::write(&head(&s, "input words"), &ins, &rows_in),
+        words::write(&head("input words"), &ins, rows_in),
     )?;
     write_file(
         &file("out.hex"),
-        words::write(&head(&s, "the model's output words"), &outs, &rows_out),
+        words::write(&head("the model's output words"), &outs, rows_out),
     )?;
     write_file(
         &file("mem"),
-        words::readmemh(&head(&s, "packed input words"), &ins, &rows_in),
+        words::readmemh(&head("packed input words"), &ins, rows_in),
     )?;
     Ok(format!(
         "rtu encode: {} tests for {} -> {}.{{in.hex,out.hex,mem}}",
         rows_in.len(),
-        s.e.module,
+        e.module,
         prefix.display()
     ))
 }
 
 /// `rtu decode`: the captured words as world-space results, written as `rtu run` writes them.
 pub fn decode(a: &DecodeArgs) -> Result<(), String> {
+    if is_bundle(&a.module)? {
+        return decode_bundles(a);
+    }
     let s = setup(&a.module, &a.vectors, a.bounds.as_deref())?;
     let outs = words::columns(&s.ports, false);
-    let csrc = a.captured.display().to_string();
-    let text = std::fs::read_to_string(&a.captured).map_err(|e| format!("{csrc}: {e}"))?;
-    let rows = words::read(&text, &csrc, &s.ports, &outs)?;
-    if rows.len() != s.vs.len() {
-        return Err(format!(
-            "{csrc}: {} results, but {} has {} vectors",
-            rows.len(),
-            s.src,
-            s.vs.len()
-        ));
-    }
+    let (csrc, rows) = captured(a, &s.ports, s.vs.len(), &s.src)?;
     let mut w = Output::open(a.output.as_deref())?;
     let mut header = vec![];
     write_header(&mut header, s.vfmt).map_err(|e| e.to_string())?;
@@ -313,14 +336,7 @@ pub fn decode(a: &DecodeArgs) -> Result<(), String> {
             rows.iter().zip(s.vs.iter().zip(&tests)).enumerate()
         {
             let (tag, o) = tb::ip::slab_out_of_row(&ctx, &outs, row)?;
-            if tag != tb::ip::seq_tag(n) {
-                return Err(format!(
-                    "{csrc}:{line}: field `tag_out`: {tag:#x}, but result {n} (the vector with tag {}) \
-                     was sent with tag_in {:#x}: a result is missing, repeated or out of order",
-                    v.tag,
-                    tb::ip::seq_tag(n)
-                ));
-            }
+            check_tag(&csrc, *line, tag, n, v.tag)?;
             let (hit, en, ex) = ctx.world(r, &o);
             write_result(&mut w, s.vfmt, v.tag, hit, en, ex).map_err(|e| w.err(e))?;
         }
@@ -354,7 +370,24 @@ pub fn example(e: &Exported, ports: &[Port]) -> Result<Option<tb::ip::datasheet:
     if encodable(e).is_err() {
         return Ok(None);
     }
-    let v = example_vector();
+    if matches!(
+        e.family,
+        Family::BundleFix { .. } | Family::BundleFloat { .. }
+    ) {
+        return bundle_example(e, ports).map(Some);
+    }
+    let mut v = example_vector();
+    if matches!(
+        e.family,
+        Family::PlaneFix { .. } | Family::PlaneFloat { .. }
+    ) {
+        // One cull plane, relative to the box's centroid (0.625, 0.5, 1): keep x >= 0.625, so the
+        // exact entry moves from t = 0.5 to t = 0.625.
+        v.planes.push(golden::plane::clip::Plane {
+            n: glam::DVec3::new(-1.0, 0.0, 0.0),
+            w: 0.0,
+        });
+    }
     let mut json = vec![];
     golden::slab::vectors::write_vector(&mut json, VecFormat::JsonLines, &v)
         .map_err(|e| e.to_string())?;
@@ -382,12 +415,12 @@ pub fn example(e: &Exported, ports: &[Port]) -> Result<Option<tb::ip::datasheet:
     });
     let mapping = match &s.map {
         Some(m) => format!(
-            "maps, with the grid of the vector's own bounds (what `rtu encode` does for a file \
+            "(a line of `rtu run`'s JSON input) maps, with the grid of the vector's own bounds (what `rtu encode` does for a file \
              holding only this vector: `k = {}`, `c = ({}, {}, {})`, so one grid unit is 2^{} world \
              units), to these input words:",
             m.k, m.c[0], m.c[1], m.c[2], m.k
         ),
-        None => "maps to these input words:".into(),
+        None => "(a line of `rtu run`'s JSON input) maps to these input words:".into(),
     };
     Ok(Some(tb::ip::datasheet::Example {
         vector: String::from_utf8_lossy(&json).trim().to_string(),
@@ -396,4 +429,283 @@ pub fn example(e: &Exported, ports: &[Port]) -> Result<Option<tb::ip::datasheet:
         outs: outs.iter().map(|p| p.name.clone()).zip(ro).collect(),
         result: res,
     }))
+}
+
+/// The captured output words of a decode, checked against the number of vectors.
+fn captured(
+    a: &DecodeArgs,
+    ports: &[Port],
+    vectors: usize,
+    src: &str,
+) -> Result<(String, Vec<(usize, Vec<u64>)>), String> {
+    let outs = words::columns(ports, false);
+    let csrc = a.captured.display().to_string();
+    let text = std::fs::read_to_string(&a.captured).map_err(|e| format!("{csrc}: {e}"))?;
+    let rows = words::read(&text, &csrc, ports, &outs)?;
+    if rows.len() != vectors {
+        return Err(format!(
+            "{csrc}: {} results, but {src} has {vectors} vectors",
+            rows.len()
+        ));
+    }
+    Ok((csrc, rows))
+}
+
+/// The tag of result `n` (on line `line` of `csrc`) must be test `n`'s.
+fn check_tag(csrc: &str, line: usize, tag: u16, n: usize, user_tag: u64) -> Result<(), String> {
+    if tag != tb::ip::seq_tag(n) {
+        return Err(format!(
+            "{csrc}:{line}: field `tag_out`: {tag:#x}, but result {n} (the vector with tag {user_tag}) \
+             was sent with tag_in {:#x}: a result is missing, repeated or out of order",
+            tb::ip::seq_tag(n)
+        ));
+    }
+    Ok(())
+}
+
+/// Whether `module` is a bundle pair (its vectors are bundle vectors), after the module checks.
+fn is_bundle(module: &str) -> Result<bool, String> {
+    let e = rtl::export::find(module)?;
+    encodable(&e)?;
+    Ok(matches!(
+        e.family,
+        Family::BundleFix { .. } | Family::BundleFloat { .. }
+    ))
+}
+
+/// A bundle pair and the bundle vectors for it.
+struct BundleSetup {
+    e: Exported,
+    ports: Vec<Port>,
+    vs: Vec<(usize, golden::bundle::vectors::BundleVector)>,
+    map: Option<GridMap>,
+    src: String,
+}
+
+impl BundleSetup {
+    fn head(&self) -> impl Fn(&str) -> Vec<String> + '_ {
+        move |what| {
+            let mut h = vec![format!(
+                "rtu encode: {what} of module {}, latency {} clocks, {} bundles from {}",
+                self.e.module,
+                self.e.latency,
+                self.vs.len(),
+                self.src
+            )];
+            if let Some(m) = &self.map {
+                h.push(format!(
+                    "grid: q = x / 2^{} - c, c = ({}, {}, {}) (the datasheet's grid map)",
+                    m.k, m.c[0], m.c[1], m.c[2]
+                ));
+            }
+            h.push("test n carries tag_in = n mod 65536; results leave in order".into());
+            h
+        }
+    }
+}
+
+fn bundle_setup(name: &str, input: &Path, bounds: Option<&str>) -> Result<BundleSetup, String> {
+    let (e, ports) = module(name)?;
+    let src = input.display().to_string();
+    let bytes = slurp(input)?;
+    let vs: Vec<_> = golden::bundle::vectors::read_numbered_bundles(
+        std::io::BufReader::new(std::io::Cursor::new(bytes)),
+        src.clone(),
+    )
+    .collect::<Result<_, _>>()
+    .map_err(|e| e.to_string())?;
+    if vs.is_empty() {
+        return Err(format!("{src}: no bundles"));
+    }
+    bundle_setup_from(e, ports, vs, bounds, src)
+}
+
+fn bundle_setup_from(
+    e: Exported,
+    ports: Vec<Port>,
+    vs: Vec<(usize, golden::bundle::vectors::BundleVector)>,
+    bounds: Option<&str>,
+    src: String,
+) -> Result<BundleSetup, String> {
+    let map = match e.family {
+        Family::BundleFix { bf } => {
+            let (lo, hi) = match bounds {
+                Some(b) => parse_bounds(b)?,
+                None => {
+                    let plain: Vec<_> = vs.iter().map(|(_, v)| v.clone()).collect();
+                    crate::run_bundles::bounds(&plain)
+                        .ok_or_else(|| format!("{src}: no bundles"))?
+                }
+            };
+            Some(GridMap::for_bounds(bf.base, lo, hi).map_err(|e| e.to_string())?)
+        }
+        _ => None,
+    };
+    Ok(BundleSetup {
+        e,
+        ports,
+        vs,
+        map,
+        src,
+    })
+}
+
+/// The input words and the model's output words (`tag_out`, `all_hit`, `all_miss`) of every bundle:
+/// the pair tests the bundle (by its bounds, made from its rays when it is given by rays) against the
+/// box's inner and outer quantisations.
+fn bundle_rows(b: &BundleSetup) -> Result<(Vec<Vec<u64>>, Vec<Vec<u64>>), String> {
+    let ins = words::columns(&b.ports, true);
+    let outs = words::columns(&b.ports, false);
+    let at = |line: usize, tag: u64, e: golden::Error| {
+        format!("{}:{line}: bundle with tag {tag}: {e}", b.src)
+    };
+    let mut ri = vec![];
+    let mut ro = vec![];
+    for (n, (line, v)) in b.vs.iter().enumerate() {
+        let tag = tb::ip::seq_tag(n);
+        let (row, (all_hit, all_miss)) = match b.e.family {
+            Family::BundleFix { bf } => {
+                let map = b.map.expect("a grid for a fixed format");
+                let q = (|| {
+                    Ok::<_, golden::Error>((
+                        rtl::bundle::pair_fix::PairInput::Bundle(
+                            golden::bundle::fix::quantize_bundle(&bf, &map, &v.bundle)?,
+                        ),
+                        golden::bundle::fix::quantize_box_pair(&map, &v.bx)?,
+                    ))
+                })()
+                .map_err(|e| at(*line, v.tag, e))?;
+                let row = ins
+                    .iter()
+                    .map(|p| tb::bundle::pair_fix::bundle_in_word(&bf, &p.name, tag, &Some(q)))
+                    .collect::<Result<Vec<_>, _>>()?;
+                (row, tb::bundle::pair_fix::bundle_model(&bf, &q))
+            }
+            Family::BundleFloat { f } => {
+                let q = (|| {
+                    Ok::<_, golden::Error>((
+                        rtl::bundle::pair_float::FloatPairInput::Bundle(
+                            golden::bundle::float::quantize_bundle(&f, &v.bundle)?,
+                        ),
+                        golden::bundle::float::quantize_box_pair(&f, &v.bx)?,
+                    ))
+                })()
+                .map_err(|e| at(*line, v.tag, e))?;
+                let row = ins
+                    .iter()
+                    .map(|p| tb::bundle::pair_float::bundle_float_in_word(&p.name, tag, &Some(q)))
+                    .collect::<Result<Vec<_>, _>>()?;
+                (row, tb::bundle::pair_float::bundle_float_model(&f, &q))
+            }
+            _ => unreachable!("is_bundle"),
+        };
+        ri.push(row);
+        ro.push(
+            outs.iter()
+                .map(|p| match p.name.as_str() {
+                    "tag_out" => Ok(tag as u64),
+                    "all_hit" => Ok(all_hit as u64),
+                    "all_miss" => Ok(all_miss as u64),
+                    other => Err(format!("unknown output port {other}")),
+                })
+                .collect::<Result<Vec<_>, _>>()?,
+        );
+    }
+    Ok((ri, ro))
+}
+
+/// `rtu decode` of a bundle pair: one result line per bundle (`all_hit`, `all_miss`), as
+/// `rtu run --bundles` writes a bundle given by its bounds.
+fn decode_bundles(a: &DecodeArgs) -> Result<(), String> {
+    let b = bundle_setup(&a.module, &a.vectors, a.bounds.as_deref())?;
+    let outs = words::columns(&b.ports, false);
+    let (csrc, rows) = captured(a, &b.ports, b.vs.len(), &b.src)?;
+    let mut w = Output::open(a.output.as_deref())?;
+    for (n, ((line, row), (_, v))) in rows.iter().zip(&b.vs).enumerate() {
+        let word = |name: &str| {
+            outs.iter()
+                .position(|p| p.name == name)
+                .map(|k| row[k])
+                .ok_or_else(|| format!("no output port {name}"))
+        };
+        check_tag(&csrc, *line, word("tag_out")? as u16, n, v.tag)?;
+        let r = golden::bundle::vectors::BundleResult {
+            all_hit: word("all_hit")? != 0,
+            all_miss: word("all_miss")? != 0,
+            rays: None,
+        };
+        golden::bundle::vectors::write_bundle_result(&mut w, v.tag, &r).map_err(|e| w.err(e))?;
+    }
+    w.commit()
+}
+
+/// The bundle pairs' worked example: a bundle of rays from the square (-0.1..0.1, 0.4..0.6, -5) going
+/// up the z axis within a small cone, unbounded (`t_lo = t_hi = inf`: every ray's `t_max` is infinite),
+/// against the box (-1, -1, -1)-(1, 1, 1): every ray hits, and the AllHit tester can say so.
+fn bundle_example(e: &Exported, ports: &[Port]) -> Result<tb::ip::datasheet::Example, String> {
+    use glam::DVec3;
+    let v = golden::bundle::vectors::BundleVector {
+        tag: 0,
+        bundle: golden::bundle::edge::Bundle::new(
+            (DVec3::new(-0.1, 0.4, -5.0), DVec3::new(0.1, 0.6, -5.0)),
+            (DVec3::new(-0.01, -0.01, 1.0), DVec3::new(0.01, 0.01, 1.0)),
+            f64::INFINITY,
+            f64::INFINITY,
+        )
+        .map_err(|e| e.to_string())?,
+        rays: vec![],
+        bx: golden::Aabb::new(DVec3::splat(-1.0), DVec3::splat(1.0)).map_err(|e| e.to_string())?,
+    };
+    let mut json = vec![];
+    golden::bundle::vectors::write_bundle_vector(&mut json, &v).map_err(|e| e.to_string())?;
+    let b = bundle_setup_from(
+        e.clone(),
+        ports.to_vec(),
+        vec![(1, v.clone())],
+        None,
+        "the example".into(),
+    )?;
+    let (ri, ro) = bundle_rows(&b)?;
+    let ins = words::columns(ports, true);
+    let outs = words::columns(ports, false);
+    let word = |name: &str| {
+        outs.iter()
+            .position(|p| p.name == name)
+            .map(|k| ro[0][k] != 0)
+            .unwrap_or(false)
+    };
+    let mut line = vec![];
+    golden::bundle::vectors::write_bundle_result(
+        &mut line,
+        0,
+        &golden::bundle::vectors::BundleResult {
+            all_hit: word("all_hit"),
+            all_miss: word("all_miss"),
+            rays: None,
+        },
+    )
+    .map_err(|e| e.to_string())?;
+    let mapping = match &b.map {
+        Some(m) => format!(
+            "(a line of `rtu run --bundles`'s input) maps, with the grid of the vector's own bounds \
+             (`k = {}`, `c = ({}, {}, {})`), to these input words:",
+            m.k, m.c[0], m.c[1], m.c[2]
+        ),
+        None => "(a line of `rtu run --bundles`'s input) maps to these input words:".into(),
+    };
+    Ok(tb::ip::datasheet::Example {
+        vector: String::from_utf8_lossy(&json).trim().to_string(),
+        mapping,
+        ins: ins
+            .iter()
+            .map(|p| p.name.clone())
+            .zip(ri[0].clone())
+            .collect(),
+        outs: outs
+            .iter()
+            .map(|p| p.name.clone())
+            .zip(ro[0].clone())
+            .collect(),
+        result: String::from_utf8_lossy(&line).trim().to_string(),
+    })
 }

@@ -151,7 +151,99 @@ fn roundtrip() {
             "{module}"
         );
     }
+    // The bundle pairs: bundle vectors by their bounds, against `rtu run --bundles`.
+    let bv = d.join("bundles.jsonl");
+    std::fs::write(&bv, bundle_vectors(200, 11)).unwrap();
+    for (module, fmt) in [
+        ("bundle_fix_g12_i16f11_t20f6_d10", "b12"),
+        ("bundle_float_e5m10", "fp16"),
+    ] {
+        let prefix = d.join(module);
+        ok(&[
+            "--out",
+            &s(&d),
+            "encode",
+            "--module",
+            module,
+            &s(&bv),
+            "-o",
+            &s(&prefix),
+        ]);
+        let expect = std::fs::read_to_string(format!("{}.out.hex", prefix.display())).unwrap();
+        let captured = simulate(
+            module,
+            &PathBuf::from(format!("{}.in.hex", prefix.display())),
+        );
+        let rows = |t: &str| -> Vec<String> {
+            t.lines()
+                .filter(|l| !l.starts_with("//"))
+                .map(String::from)
+                .collect()
+        };
+        assert_eq!(rows(&captured), rows(&expect), "{module}");
+        // Every outcome occurs in the stream: all hit, all miss, neither.
+        let outcomes: std::collections::BTreeSet<String> = rows(&expect)
+            .iter()
+            .map(|r| r.split_whitespace().skip(1).collect::<Vec<_>>().join(" "))
+            .collect();
+        assert_eq!(outcomes.len(), 3, "{module}: {outcomes:?}");
+        let cap = d.join(format!("{module}.cap.hex"));
+        std::fs::write(&cap, &captured).unwrap();
+        let decoded = ok(&["decode", "--module", module, "--vectors", &s(&bv), &s(&cap)]);
+        let want = ok(&[
+            "run",
+            "--bundles",
+            "--engine",
+            "model",
+            "--format",
+            fmt,
+            &s(&bv),
+        ]);
+        assert_eq!(
+            String::from_utf8_lossy(&decoded),
+            String::from_utf8_lossy(&want),
+            "{module}"
+        );
+    }
     std::fs::remove_dir_all(&d).ok();
+}
+
+/// `n` bundle vectors by their bounds (seeded): boxes and origin boxes around the origin, cones of
+/// directions aimed near the box, wide and narrow, so that every outcome of the pair occurs.
+fn bundle_vectors(n: usize, seed: u64) -> String {
+    let mut x = seed.wrapping_mul(0x9e37_79b9_7f4a_7c15) | 1;
+    let mut u = |lo: f64, hi: f64| {
+        x ^= x << 13;
+        x ^= x >> 7;
+        x ^= x << 17;
+        lo + (hi - lo) * ((x >> 11) as f64 / (1u64 << 53) as f64)
+    };
+    let mut out = String::new();
+    for tag in 0..n {
+        let c: Vec<f64> = (0..3).map(|_| u(-4.0, 4.0)).collect();
+        let h: Vec<f64> = (0..3).map(|_| u(0.2, 2.0)).collect();
+        let o: Vec<f64> = (0..3).map(|_| u(-8.0, 8.0)).collect();
+        // One bundle in three is narrow and aimed at the box's centre (the AllHit tester's case).
+        let centred = tag % 3 == 0;
+        let w = if centred { 0.01 } else { u(0.0, 0.3) };
+        let off = if centred { 0.0 } else { 3.0 };
+        let aim: Vec<f64> = (0..3).map(|a| c[a] + u(-off, off) - o[a]).collect();
+        let m = aim.iter().fold(0.0f64, |m, v| m.max(v.abs())).max(1e-3);
+        let spread = [0.001, 0.02, 0.2][tag % 3];
+        let f = |v: Vec<f64>| format!("[{},{},{}]", v[0], v[1], v[2]);
+        out += &format!(
+            "{{\"tag\":{tag},\"o_lo\":{},\"o_hi\":{},\"d_lo\":{},\"d_hi\":{},\"t_lo\":{},\"t_hi\":\"inf\",\"box_min\":{},\"box_max\":{}}}\n",
+            f(o.iter().map(|v| v - w).collect()),
+            f(o.iter().map(|v| v + w).collect()),
+            f(aim.iter().map(|v| v / m - spread).collect()),
+            f(aim.iter().map(|v| v / m + spread).collect()),
+            // AllHit needs every ray's range to reach the box: t_max of at least t_lo.
+            if centred { "30" } else { "0" },
+            f((0..3).map(|a| c[a] - h[a]).collect()),
+            f((0..3).map(|a| c[a] + h[a]).collect()),
+        );
+    }
+    out
 }
 
 #[test]
@@ -276,6 +368,16 @@ fn export_writes_a_datasheet_and_a_core_file_per_module() {
             "{}",
             e.module
         );
+        // The committed datasheet is what the export writes (regenerate: rtu export --datasheets docs/ip).
+        let docs = Path::new(env!("CARGO_MANIFEST_DIR"))
+            .join("../docs/ip")
+            .join(format!("{}.md", e.module));
+        let committed = std::fs::read_to_string(&docs).unwrap_or_default();
+        assert!(
+            committed == md,
+            "{} is not what rtu export writes: run `rtu export --datasheets docs/ip`",
+            docs.display()
+        );
         let core = std::fs::read_to_string(vdir.join(format!("{}.core", e.module))).unwrap();
         assert!(
             core.starts_with("CAPI=2:") && core.contains(&format!("{}.v", e.module)),
@@ -291,5 +393,14 @@ fn export_writes_a_datasheet_and_a_core_file_per_module() {
         "the tiny z component"
     );
     assert!(md.contains("\"hit\":true"), "the example hits");
+    // The cull-plane example's plane tightens the entry (exact 0.625; the slab tester alone says 0.3125).
+    let md =
+        std::fs::read_to_string(vdir.join("plane_fix_g12_i16f11_t20f6_n8_fd11_r8_k1.md")).unwrap();
+    assert!(md.contains("\"t_entry\":0.622528076171875"), "{md}");
+    let md = std::fs::read_to_string(vdir.join("bundle_fix_g12_i16f11_t20f6_d10.md")).unwrap();
+    assert!(
+        md.contains("\"all_hit\":true"),
+        "the bundle example is all hit"
+    );
     std::fs::remove_dir_all(&d).ok();
 }

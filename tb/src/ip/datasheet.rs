@@ -344,7 +344,7 @@ pub fn render(
     match example {
         Some(x) => {
             s += &format!(
-                "The vector (a line of `rtu run`'s JSON input)\n\n```json\n{}\n```\n\n{}\n\n",
+                "The vector\n\n```json\n{}\n```\n\n{}\n\n",
                 x.vector, x.mapping
             );
             s += "| input port | word (hex) |\n|---|---|\n";
