@@ -218,16 +218,21 @@ fn quantise<R, B>(
         .collect()
 }
 
-/// Comment lines that say what a word file holds and how the vectors were mapped.
-fn head(s: &Setup, what: &str) -> Vec<String> {
+/// Comment lines that say what a word file holds (`what`) and how the `n` vectors (`unit`: tests or
+/// bundles) from `src` were mapped.
+fn word_head(
+    e: &Exported,
+    map: Option<&GridMap>,
+    n: usize,
+    unit: &str,
+    src: &str,
+    what: &str,
+) -> Vec<String> {
     let mut h = vec![format!(
-        "rtu encode: {what} of module {}, latency {} clocks, {} tests from {}",
-        s.e.module,
-        s.e.latency,
-        s.vs.len(),
-        s.src
+        "rtu encode: {what} of module {}, latency {} clocks, {n} {unit} from {src}",
+        e.module, e.latency
     )];
-    if let Some(m) = &s.map {
+    if let Some(m) = map {
         h.push(format!(
             "grid: q = x / 2^{} - c, c = ({}, {}, {}) (the datasheet's grid map)",
             m.k, m.c[0], m.c[1], m.c[2]
@@ -235,6 +240,10 @@ fn head(s: &Setup, what: &str) -> Vec<String> {
     }
     h.push("test n carries tag_in = n mod 65536; results leave in order".into());
     h
+}
+
+fn head(s: &Setup, what: &str) -> Vec<String> {
+    word_head(&s.e, s.map.as_ref(), s.vs.len(), "tests", &s.src, what)
 }
 
 /// `rtu encode`: writes the three word files and returns a summary line.
@@ -485,21 +494,14 @@ struct BundleSetup {
 impl BundleSetup {
     fn head(&self) -> impl Fn(&str) -> Vec<String> + '_ {
         move |what| {
-            let mut h = vec![format!(
-                "rtu encode: {what} of module {}, latency {} clocks, {} bundles from {}",
-                self.e.module,
-                self.e.latency,
+            word_head(
+                &self.e,
+                self.map.as_ref(),
                 self.vs.len(),
-                self.src
-            )];
-            if let Some(m) = &self.map {
-                h.push(format!(
-                    "grid: q = x / 2^{} - c, c = ({}, {}, {}) (the datasheet's grid map)",
-                    m.k, m.c[0], m.c[1], m.c[2]
-                ));
-            }
-            h.push("test n carries tag_in = n mod 65536; results leave in order".into());
-            h
+                "bundles",
+                &self.src,
+                what,
+            )
         }
     }
 }

@@ -40,6 +40,20 @@ pub struct Example {
     pub result: String,
 }
 
+/// The index of the slab testers' array ports: the axis.
+fn slab_index() -> Vec<(String, String)> {
+    let mut v = vec![(
+        "ray_o_lo".to_string(),
+        "axis: 0 = x, 1 = y, 2 = z".to_string(),
+    )];
+    for p in [
+        "ray_o_hi", "ray_m_lo", "ray_m_hi", "ray_neg", "box_lo", "box_hi",
+    ] {
+        v.push((p.into(), "axis".into()));
+    }
+    v
+}
+
 /// What the datasheet says of the fixed slab tester of `fmt` (and of the slab ports of the chained
 /// cull-plane tester over it).
 pub fn slab_fix_doc(fmt: &FixFormat) -> FamilyDoc {
@@ -75,15 +89,7 @@ pub fn slab_fix_doc(fmt: &FixFormat) -> FamilyDoc {
             ("t_entry".into(), format!("entry parameter, a lower bound of the exact entry, signed {t}-bit t code (same unit as `ray_t_min`)")),
             ("t_exit".into(), format!("exit parameter, an upper bound of the exact exit, signed {t}-bit t code")),
         ],
-        index: vec![
-            ("ray_o_lo".into(), "axis: 0 = x, 1 = y, 2 = z".into()),
-            ("ray_o_hi".into(), "axis".into()),
-            ("ray_m_lo".into(), "axis".into()),
-            ("ray_m_hi".into(), "axis".into()),
-            ("ray_neg".into(), "axis".into()),
-            ("box_lo".into(), "axis".into()),
-            ("box_hi".into(), "axis".into()),
-        ],
+        index: slab_index(),
         rules: slab_fix_rules(fmt),
     }
 }
@@ -183,15 +189,7 @@ pub fn slab_float_doc(f: &FloatFormat) -> FamilyDoc {
             ("t_entry".into(), "entry parameter in world units, a lower bound of the exact entry".into()),
             ("t_exit".into(), "exit parameter in world units, an upper bound of the exact exit".into()),
         ],
-        index: vec![
-            ("ray_o_lo".into(), "axis: 0 = x, 1 = y, 2 = z".into()),
-            ("ray_o_hi".into(), "axis".into()),
-            ("ray_m_lo".into(), "axis".into()),
-            ("ray_m_hi".into(), "axis".into()),
-            ("ray_neg".into(), "axis".into()),
-            ("box_lo".into(), "axis".into()),
-            ("box_hi".into(), "axis".into()),
-        ],
+        index: slab_index(),
         rules: format!(
             "Every value port is a {w}-bit word of {name}: bit {s} the sign, bits [{eh}:{m}] the biased \
 exponent, bits [{ml}:0] the fraction (IEEE 754 layout; exponent all ones with a zero fraction is \

@@ -140,7 +140,7 @@ at or below `-2^{t1}`, and `2^{t1} - 2` for a code at or above `2^{t1} - 1`. \
 /// fraction option (`PlaneFrac`, module `plane_fix_frac_*`) when it is true.
 pub fn plane_fix_doc(cf: &CullFixFormat, k: usize, frac: bool) -> FamilyDoc {
     let fmt = &cf.base;
-    let (g, i, fi, t, ft) = (fmt.g, fmt.i, fmt.fi, fmt.t, fmt.ft);
+    let (g, t, ft) = (fmt.g, fmt.t, fmt.ft);
     let (n, fd, r) = (cf.n, cf.fd, cf.r);
     let (db, wb, sb, eb) = (cf.d_bits(), cf.w_bits(), cf.s_bits(), cf.den_bits());
     let mb = eb - 1;
@@ -211,24 +211,21 @@ pub fn plane_fix_doc(cf: &CullFixFormat, k: usize, frac: bool) -> FamilyDoc {
         ]);
     }
 
-    let mut ports = vec![
-        port("ray_o_lo", format!("origin, lower bound: `floor(o_g)`, signed {g}-bit grid coordinate")),
-        port("ray_o_hi", format!("origin, upper bound: `ceil(o_g)`, signed {g}-bit grid coordinate")),
-        port("ray_m_lo", format!("inverse direction magnitude, lower bound `floor(2^{fi} / |d_s|)`, unsigned {i} bits, {fi} fraction bits")),
-        port("ray_m_hi", format!("inverse direction magnitude, upper bound `ceil(2^{fi} / |d_s|)`, unsigned {i} bits; all ones = unbounded")),
-        port("ray_neg", "direction sign: 1 when the component is negative (including -0)"),
-        port("ray_t_min", format!("start of the ray's range, `floor` of it in t codes, signed {t} bits; the most negative code is -inf")),
-        port("ray_t_max", format!("end of the ray's range, `ceil` of it in t codes, signed {t} bits; the most positive code is +inf")),
+    // The slab ports mean what they mean in the slab tester of the same base format.
+    let mut ports: Vec<(String, String)> = crate::ip::datasheet::slab_fix_doc(&cf.base)
+        .ports
+        .into_iter()
+        .filter(|(b, _)| !matches!(b.as_str(), "hit" | "t_entry" | "t_exit"))
+        .collect();
+    ports.extend([
         port("ray_d_lo", format!("scaled direction, lower bound `floor(d_a * 2^(j + {fd}))`, signed {db} bits, {fd} fraction bits")),
         port("ray_d_hi", format!("scaled direction, upper bound `ceil(d_a * 2^(j + {fd}))`, signed {db} bits, {fd} fraction bits")),
-        port("box_lo", format!("box minimum `floor(min_g)`, signed {g}-bit grid coordinate")),
-        port("box_hi", format!("box maximum `ceil(max_g)`, signed {g}-bit grid coordinate")),
         port("plane_nx", format!("plane normal, x component, signed {n}-bit integer (points at the empty side; 0 0 0 with `plane_w = 0` = unused slot)")),
         port("plane_ny", format!("plane normal, y component, signed {n}-bit integer")),
         port("plane_nz", format!("plane normal, z component, signed {n}-bit integer")),
         port("plane_w", format!("plane offset in half grid units from the box centre, signed {wb} bits: the node's geometry satisfies `n . (2 p_g - box_lo - box_hi) <= plane_w`")),
         port("hit", "1 when the node is not culled: the ray may meet the box on the non-empty side of every plane within its range (never 0 when it does)"),
-    ];
+    ]);
     if frac {
         ports.extend([
             port("t_entry", format!("entry, a lower bound of the exact clipped entry, as a packed fraction `{{den, num}}` ({mb} + {sb} bits, see Outputs)")),
