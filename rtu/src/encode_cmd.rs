@@ -7,7 +7,10 @@
 //! input words packed into one word per test for `$readmemh`). Test `n` carries the tag `n mod 2^16`.
 //! `decode` reads captured output words (the `.out.hex` form) with the same vector file and writes the
 //! results exactly as `rtu run` writes them, so `decode(simulate(encode(v)))` can be compared with
-//! `rtu run` byte for byte.
+//! `rtu run` byte for byte (for a bundle pair, with `rtu run --bundles` on bundles given by their
+//! bounds: for a bundle given by its rays, `rtu run` also runs the results processor). Decode must be
+//! given the same `--bounds` as encode (or none to both): the grid is the vector file's, and the word
+//! files only name it in a comment.
 
 use crate::out_file::{write_file, Output};
 use crate::run_vectors::{file_bounds, parse_bounds, slurp, vectors_of};
@@ -57,7 +60,7 @@ pub struct DecodeArgs {
     /// Where to write the results (in the vector file's format, as `rtu run`); stdout when absent.
     #[arg(long, short)]
     pub output: Option<PathBuf>,
-    /// The bounds given to `rtu encode`, if any.
+    /// The bounds given to `rtu encode`, if any (the same grid is needed to read the t codes back).
     #[arg(long)]
     pub bounds: Option<String>,
 }

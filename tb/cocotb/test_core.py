@@ -166,18 +166,26 @@ async def stream_checked(dut):
             dut.valid_in.value = 0
             continue
         if not mid_reset_done and ((nxt >= n // 2 and len(due) >= reset_want) or (nxt >= n and due)):
-            # A reset at edge `nedge` with a bubble: every result not yet out (due at nedge or later) is dropped.
+            # A reset at edge `nedge`: every result not yet out (due at nedge or later) is dropped, and so
+            # is the test applied with valid_in high at that same edge (when one is left to apply).
             mid_reset_done = True
             mid_reset_edge = nedge
             dropped = sorted(due.values())
+            dut.rst.value = 1
+            if nxt < n:
+                for h, word in zip(in_handles, tests[nxt]):
+                    h.value = word
+                dut.valid_in.value = 1
+                dropped.append(nxt)
+                sent += 1
+            else:
+                dut.valid_in.value = 0
+                for h, w in zip(in_handles, in_widths):
+                    h.value = rng.getrandbits(w)
             dropped_due = {k % 65536: k for k in dropped}
-            dut._log.info(f"reset at clock {nedge}: tests {dropped} in flight must never leave")
+            dut._log.info(f"reset at clock {nedge}: tests {dropped} in flight or entering must never leave")
             due.clear()
             nxt = dropped[0]
-            dut.rst.value = 1
-            dut.valid_in.value = 0
-            for h, w in zip(in_handles, in_widths):
-                h.value = rng.getrandbits(w)
             continue
         dut.rst.value = 0
         if nxt < n and rng.random() >= p_bubble:

@@ -138,7 +138,8 @@ direction is `d_s = d * 2^j` (exact). Only the direction's ratios matter, so the
 fraction bits, in the ray's own unit: `t_world = code * 2^(k + j - {ft})`. The most negative code \
 `0x{tneg:x}` is `-inf`, the most positive `0x{tpos:x}` is `+inf`.
 
-**Outputs**: `hit = 1` when the box is not empty and `t_entry <= t_exit`; `t_entry` is the maximum of \
+**Outputs**: `hit = 1` when the box is not empty, `t_entry <= t_exit`, `t_entry` is not the +inf code \
+and `t_exit` is not the -inf code; `t_entry` is the maximum of \
 `ray_t_min` and the three axes' entries, `t_exit` the minimum of `ray_t_max` and the three exits. An \
 axis with an unbounded inverse does not constrain t when the origin interval touches its slab, and \
 misses otherwise. On a miss `t_entry`/`t_exit` are still driven (the values the datapath computed) and \
@@ -369,4 +370,53 @@ pub fn render(
         }
     }
     s
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// The codes the fixed slab datasheet names are the format's (golden::format::fixed), and its hit rule
+    /// has every condition of the model's (golden::slab::fix::slab_fix).
+    #[test]
+    fn the_fixed_slab_rules_name_the_formats_codes_and_the_models_hit_conditions() {
+        for fmt in FixFormat::presets() {
+            let r = slab_fix_doc(&fmt).rules;
+            let mask = |v: i64, bits: u32| (v as u64) & ((1u64 << bits) - 1);
+            for code in [
+                format!("0x{:x}", fmt.inv_inf()),
+                format!("0x{:x}", fmt.inv_inf() - 1),
+                format!("0x{:x}", mask(fmt.t_pos_inf(), fmt.t)),
+                format!("0x{:x}", mask(fmt.t_neg_inf(), fmt.t)),
+                format!("0x{:x}", mask(fmt.gmax(), fmt.g)),
+                format!("0x{:x}", mask(fmt.gmin(), fmt.g)),
+                format!("[{}, {}]", fmt.gmin(), fmt.gmax()),
+                format!("2^(k + j - {})", fmt.ft),
+            ] {
+                assert!(r.contains(&code), "{}: {code} missing", fmt.name());
+            }
+            for cond in [
+                "the box is not empty",
+                "`t_entry <= t_exit`",
+                "`t_entry` is not the +inf code",
+                "`t_exit` is not the -inf code",
+            ] {
+                assert!(r.contains(cond), "{}: {cond} missing", fmt.name());
+            }
+        }
+    }
+
+    #[test]
+    fn the_float_slab_rules_name_the_formats_infinities() {
+        for f in [FloatFormat::FP16, FloatFormat::FP32] {
+            let r = slab_float_doc(&f).rules;
+            assert!(r.contains(&format!("0x{:x}", f.inf(false))), "{}", f.name());
+            assert!(r.contains(&format!("0x{:x}", f.inf(true))), "{}", f.name());
+            assert!(
+                r.contains("t_entry != +inf and t_exit != -inf"),
+                "{}",
+                f.name()
+            );
+        }
+    }
 }

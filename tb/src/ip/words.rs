@@ -183,11 +183,11 @@ pub fn read(
         for (w, &k) in words.iter().zip(idx) {
             let p = &want[k];
             let field = &p.name;
-            let hex = w.trim_start_matches("0x");
-            if hex.is_empty() || !hex.bytes().all(|c| c.is_ascii_hexdigit() || c == b'_') {
+            let hex = w.strip_prefix("0x").unwrap_or(w);
+            let hex: String = hex.chars().filter(|&c| c != '_').collect();
+            if hex.is_empty() || !hex.bytes().all(|c| c.is_ascii_hexdigit()) {
                 return Err(format!("{at}: field `{field}`: `{w}` is not a hex word"));
             }
-            let hex: String = hex.chars().filter(|&c| c != '_').collect();
             let sig = hex.trim_start_matches('0');
             if sig.len() > 16 {
                 return Err(format!(
