@@ -13,7 +13,7 @@
 //! files only name it in a comment.
 
 use crate::out_file::{write_file, Output};
-use crate::run_vectors::{file_bounds, parse_bounds, slurp, vectors_of};
+use crate::run_vectors::{parse_bounds, slurp, vector_bounds, vectors_of};
 use golden::format::fixed::GridMap;
 use golden::slab::float::{quantize_box, quantize_ray};
 use golden::slab::vectors::{write_header, write_result, VecFormat, Vector};
@@ -96,16 +96,16 @@ fn encodable(e: &Exported) -> Result<(), String> {
 }
 
 /// The vectors of a file, each with its line, in order.
-fn read_vectors(input: &Path) -> Result<(Vec<(usize, Vector)>, Arc<Vec<u8>>, VecFormat), String> {
+fn read_vectors(input: &Path) -> Result<(Vec<(usize, Vector)>, VecFormat), String> {
     let vfmt = VecFormat::from_path(input);
     let bytes = Arc::new(slurp(input)?);
-    let vs = vectors_of(bytes.clone(), vfmt, input.display().to_string())
+    let vs = vectors_of(bytes, vfmt, input.display().to_string())
         .collect::<Result<Vec<_>, _>>()
         .map_err(|e| e.to_string())?;
     if vs.is_empty() {
         return Err(format!("{}: no vectors", input.display()));
     }
-    Ok((vs, bytes, vfmt))
+    Ok((vs, vfmt))
 }
 
 /// What one module needs of its vectors: the grid (fixed formats) and the planes per node.
@@ -120,11 +120,11 @@ struct Setup {
 
 fn setup(name: &str, input: &Path, bounds: Option<&str>) -> Result<Setup, String> {
     let (e, ports) = module(name)?;
-    let (vs, bytes, vfmt) = read_vectors(input)?;
+    let (vs, vfmt) = read_vectors(input)?;
     let src = input.display().to_string();
     let grid = match bounds {
         Some(b) => parse_bounds(b)?,
-        None => file_bounds(bytes, vfmt, &src)?,
+        None => vector_bounds(vs.iter().map(|(_, v)| v)).expect("at least one vector"),
     };
     setup_from(e, ports, vs, vfmt, grid, src)
 }
@@ -265,19 +265,7 @@ pub fn encode(a: &EncodeArgs, out: &Path) -> Result<String, String> {
         );
     }
     let s = setup(&a.module, &a.input, a.bounds.as_deref())?;
-    let ins = words::columns(&s.ports, true);
-    let outs = words::columns(&s.ports, false);
-    let (rows_in, rows_out) = with_ctx!(&s, |ctx, q| {
-        let tests = quantise(&s, q)?;
-        let mut ri = Vec::with_capacity(tests.len());
-        let mut ro = Vec::with_capacity(tests.len());
-        for (n, (r, b)) in tests.iter().enumerate() {
-            let tag = tb::ip::seq_tag(n);
-            ri.push(tb::ip::slab_in_row(&ctx, &ins, tag, r, b)?);
-            ro.push(tb::ip::slab_out_row(&ctx, &outs, tag, &ctx.model(r, b))?);
-        }
-        (ri, ro)
-    });
+    let (rows_in, rows_out) = slab_rows(&s)?;
     let h = |what: &str| head(&s, what);
     write_words(
         &s.e,
@@ -288,6 +276,47 @@ pub fn encode(a: &EncodeArgs, out: &Path) -> Result<String, String> {
         &rows_in,
         &rows_out,
     )
+}
+
+/// The input words of every test and the output words the model gives for it.
+fn slab_rows(s: &Setup) -> Result<(Vec<Vec<u64>>, Vec<Vec<u64>>), String> {
+    let ins = words::columns(&s.ports, true);
+    let outs = words::columns(&s.ports, false);
+    Ok(with_ctx!(s, |ctx, q| {
+        let tests = quantise(s, q)?;
+        let mut ri = Vec::with_capacity(tests.len());
+        let mut ro = Vec::with_capacity(tests.len());
+        for (n, (r, b)) in tests.iter().enumerate() {
+            let tag = tb::ip::seq_tag(n);
+            ri.push(tb::ip::slab_in_row(&ctx, &ins, tag, r, b)?);
+            ro.push(tb::ip::slab_out_row(&ctx, &outs, tag, &ctx.model(r, b))?);
+        }
+        (ri, ro)
+    }))
+}
+
+/// Writes the results of output word rows (`(line of csrc, words)`, one per vector, in order) to `w` as
+/// `rtu run` writes them, after checking each row's tag; `werr` names a write error.
+fn slab_results(
+    s: &Setup,
+    rows: &[(usize, Vec<u64>)],
+    csrc: &str,
+    w: &mut impl std::io::Write,
+    werr: impl Fn(std::io::Error) -> String,
+) -> Result<(), String> {
+    let outs = words::columns(&s.ports, false);
+    with_ctx!(s, |ctx, q| {
+        let tests = quantise(s, q)?;
+        for (n, ((line, row), ((_, v), (r, _)))) in
+            rows.iter().zip(s.vs.iter().zip(&tests)).enumerate()
+        {
+            let (tag, o) = tb::ip::slab_out_of_row(&ctx, &outs, row)?;
+            check_tag(csrc, *line, tag, n, v.tag)?;
+            let (hit, en, ex) = ctx.world(r, &o);
+            write_result(w, s.vfmt, v.tag, hit, en, ex).map_err(&werr)?;
+        }
+    });
+    Ok(())
 }
 
 /// Writes `<prefix>.in.hex`, `.out.hex` and `.mem` (prefix: `output`, or `<out>/encode/<module>`), each
@@ -336,23 +365,15 @@ pub fn decode(a: &DecodeArgs) -> Result<(), String> {
         return decode_bundles(a);
     }
     let s = setup(&a.module, &a.vectors, a.bounds.as_deref())?;
-    let outs = words::columns(&s.ports, false);
     let (csrc, rows) = captured(a, &s.ports, s.vs.len(), &s.src)?;
     let mut w = Output::open(a.output.as_deref())?;
     let mut header = vec![];
     write_header(&mut header, s.vfmt).map_err(|e| e.to_string())?;
     w.set_header(header);
-    with_ctx!(&s, |ctx, q| {
-        let tests = quantise(&s, q)?;
-        for (n, ((line, row), ((_, v), (r, _)))) in
-            rows.iter().zip(s.vs.iter().zip(&tests)).enumerate()
-        {
-            let (tag, o) = tb::ip::slab_out_of_row(&ctx, &outs, row)?;
-            check_tag(&csrc, *line, tag, n, v.tag)?;
-            let (hit, en, ex) = ctx.world(r, &o);
-            write_result(&mut w, s.vfmt, v.tag, hit, en, ex).map_err(|e| w.err(e))?;
-        }
-    });
+    let name = w.name();
+    slab_results(&s, &rows, &csrc, &mut w, |e| {
+        format!("{name}: cannot write: {e}")
+    })?;
     w.commit()
 }
 
@@ -412,19 +433,12 @@ pub fn example(e: &Exported, ports: &[Port]) -> Result<Option<tb::ip::datasheet:
         grid,
         "the example".into(),
     )?;
-    let ins = words::columns(&s.ports, true);
-    let outs = words::columns(&s.ports, false);
-    let (ri, ro, res) = with_ctx!(&s, |ctx, q| {
-        let tests = quantise(&s, q)?;
-        let (r, b) = &tests[0];
-        let o = ctx.model(r, b);
-        let ri = tb::ip::slab_in_row(&ctx, &ins, 0, r, b)?;
-        let ro = tb::ip::slab_out_row(&ctx, &outs, 0, &o)?;
-        let (hit, en, ex) = ctx.world(r, &o);
-        let mut line = vec![];
-        write_result(&mut line, VecFormat::JsonLines, 0, hit, en, ex).map_err(|e| e.to_string())?;
-        (ri, ro, String::from_utf8_lossy(&line).trim().to_string())
-    });
+    // Through the encoder and the model, and the model's words back through the decoder.
+    let (ri, ro) = slab_rows(&s)?;
+    let mut line = vec![];
+    slab_results(&s, &[(1, ro[0].clone())], "the example", &mut line, |e| {
+        e.to_string()
+    })?;
     let mapping = match &s.map {
         Some(m) => format!(
             "(a line of `rtu run`'s JSON input) maps, with the grid of the vector's own bounds (what `rtu encode` does for a file \
@@ -434,13 +448,9 @@ pub fn example(e: &Exported, ports: &[Port]) -> Result<Option<tb::ip::datasheet:
         ),
         None => "(a line of `rtu run`'s JSON input) maps to these input words:".into(),
     };
-    Ok(Some(tb::ip::datasheet::Example {
-        vector: String::from_utf8_lossy(&json).trim().to_string(),
-        mapping,
-        ins: ins.iter().map(|p| p.name.clone()).zip(ri).collect(),
-        outs: outs.iter().map(|p| p.name.clone()).zip(ro).collect(),
-        result: res,
-    }))
+    Ok(Some(example_of(
+        &s.ports, json, mapping, &ri[0], &ro[0], line,
+    )))
 }
 
 /// The captured output words of a decode, checked against the number of vectors.
@@ -536,11 +546,8 @@ fn bundle_setup_from(
         Family::BundleFix { bf } => {
             let (lo, hi) = match bounds {
                 Some(b) => parse_bounds(b)?,
-                None => {
-                    let plain: Vec<_> = vs.iter().map(|(_, v)| v.clone()).collect();
-                    crate::run_bundles::bounds(&plain)
-                        .ok_or_else(|| format!("{src}: no bundles"))?
-                }
+                None => crate::run_bundles::bounds(vs.iter().map(|(_, v)| v))
+                    .ok_or_else(|| format!("{src}: no bundles"))?,
             };
             Some(GridMap::for_bounds(bf.base, lo, hi).map_err(|e| e.to_string())?)
         }
@@ -623,9 +630,25 @@ fn bundle_rows(b: &BundleSetup) -> Result<(Vec<Vec<u64>>, Vec<Vec<u64>>), String
 /// `rtu run --bundles` writes a bundle given by its bounds.
 fn decode_bundles(a: &DecodeArgs) -> Result<(), String> {
     let b = bundle_setup(&a.module, &a.vectors, a.bounds.as_deref())?;
-    let outs = words::columns(&b.ports, false);
     let (csrc, rows) = captured(a, &b.ports, b.vs.len(), &b.src)?;
     let mut w = Output::open(a.output.as_deref())?;
+    let name = w.name();
+    bundle_results(&b, &rows, &csrc, &mut w, |e| {
+        format!("{name}: cannot write: {e}")
+    })?;
+    w.commit()
+}
+
+/// Writes the results of the pair's output word rows as `rtu run --bundles` writes a bundle given by its
+/// bounds, after checking each row's tag; `werr` names a write error.
+fn bundle_results(
+    b: &BundleSetup,
+    rows: &[(usize, Vec<u64>)],
+    csrc: &str,
+    w: &mut impl std::io::Write,
+    werr: impl Fn(std::io::Error) -> String,
+) -> Result<(), String> {
+    let outs = words::columns(&b.ports, false);
     for (n, ((line, row), (_, v))) in rows.iter().zip(&b.vs).enumerate() {
         let word = |name: &str| {
             outs.iter()
@@ -633,15 +656,15 @@ fn decode_bundles(a: &DecodeArgs) -> Result<(), String> {
                 .map(|k| row[k])
                 .ok_or_else(|| format!("no output port {name}"))
         };
-        check_tag(&csrc, *line, word("tag_out")? as u16, n, v.tag)?;
+        check_tag(csrc, *line, word("tag_out")? as u16, n, v.tag)?;
         let r = golden::bundle::vectors::BundleResult {
             all_hit: word("all_hit")? != 0,
             all_miss: word("all_miss")? != 0,
             rays: None,
         };
-        golden::bundle::vectors::write_bundle_result(&mut w, v.tag, &r).map_err(|e| w.err(e))?;
+        golden::bundle::vectors::write_bundle_result(w, v.tag, &r).map_err(&werr)?;
     }
-    w.commit()
+    Ok(())
 }
 
 /// The bundle pairs' worked example: a bundle of rays from the square (-0.1..0.1, 0.4..0.6, -5) going
@@ -671,25 +694,10 @@ fn bundle_example(e: &Exported, ports: &[Port]) -> Result<tb::ip::datasheet::Exa
         "the example".into(),
     )?;
     let (ri, ro) = bundle_rows(&b)?;
-    let ins = words::columns(ports, true);
-    let outs = words::columns(ports, false);
-    let word = |name: &str| {
-        outs.iter()
-            .position(|p| p.name == name)
-            .map(|k| ro[0][k] != 0)
-            .unwrap_or(false)
-    };
     let mut line = vec![];
-    golden::bundle::vectors::write_bundle_result(
-        &mut line,
-        0,
-        &golden::bundle::vectors::BundleResult {
-            all_hit: word("all_hit"),
-            all_miss: word("all_miss"),
-            rays: None,
-        },
-    )
-    .map_err(|e| e.to_string())?;
+    bundle_results(&b, &[(1, ro[0].clone())], "the example", &mut line, |e| {
+        e.to_string()
+    })?;
     let mapping = match &b.map {
         Some(m) => format!(
             "(a line of `rtu run --bundles`'s input) maps, with the grid of the vector's own bounds \
@@ -698,19 +706,30 @@ fn bundle_example(e: &Exported, ports: &[Port]) -> Result<tb::ip::datasheet::Exa
         ),
         None => "(a line of `rtu run --bundles`'s input) maps to these input words:".into(),
     };
-    Ok(tb::ip::datasheet::Example {
+    Ok(example_of(ports, json, mapping, &ri[0], &ro[0], line))
+}
+
+/// A datasheet example from the vector's JSON, the mapping sentence, its input and output word rows and
+/// its result line.
+fn example_of(
+    ports: &[Port],
+    json: Vec<u8>,
+    mapping: String,
+    ins: &[u64],
+    outs: &[u64],
+    result: Vec<u8>,
+) -> tb::ip::datasheet::Example {
+    let named = |cols: Vec<Port>, row: &[u64]| -> Vec<(String, u64)> {
+        cols.into_iter()
+            .map(|p| p.name)
+            .zip(row.iter().copied())
+            .collect()
+    };
+    tb::ip::datasheet::Example {
         vector: String::from_utf8_lossy(&json).trim().to_string(),
         mapping,
-        ins: ins
-            .iter()
-            .map(|p| p.name.clone())
-            .zip(ri[0].clone())
-            .collect(),
-        outs: outs
-            .iter()
-            .map(|p| p.name.clone())
-            .zip(ro[0].clone())
-            .collect(),
-        result: String::from_utf8_lossy(&line).trim().to_string(),
-    })
+        ins: named(words::columns(ports, true), ins),
+        outs: named(words::columns(ports, false), outs),
+        result: String::from_utf8_lossy(&result).trim().to_string(),
+    }
 }

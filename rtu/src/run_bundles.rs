@@ -158,7 +158,7 @@ fn run_rtl<S: BundleSplitIo>(
 }
 
 /// Bounds of every origin and box in the file, for the fixed-point grid.
-pub(crate) fn bounds(vs: &[BundleVector]) -> Option<(DVec3, DVec3)> {
+pub(crate) fn bounds<'a>(vs: impl IntoIterator<Item = &'a BundleVector>) -> Option<(DVec3, DVec3)> {
     let mut lo = DVec3::splat(f64::INFINITY);
     let mut hi = DVec3::splat(f64::NEG_INFINITY);
     for v in vs {

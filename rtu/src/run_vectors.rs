@@ -188,16 +188,36 @@ fn emit(
     write_result(w, vfmt, tag, hit, en, ex).map_err(|e| w.err(e))
 }
 
-/// Bounds of the origins and non-empty boxes of a vector file (validating every line on the way).
+/// Bounds of the origins and non-empty boxes of a vector file (validating every line on the way; the
+/// file is streamed, not held).
 pub(crate) fn file_bounds(
     bytes: Arc<Vec<u8>>,
     vfmt: VecFormat,
     src: &str,
 ) -> Result<(DVec3, DVec3), String> {
+    let mut failure = None;
+    let vs = vectors_of(bytes, vfmt, src.to_string()).map_while(|v| match v {
+        Ok((_, v)) => Some(v),
+        Err(e) => {
+            failure = Some(e.to_string());
+            None
+        }
+    });
+    let b = vector_bounds(vs);
+    if let Some(e) = failure {
+        return Err(e);
+    }
+    b.ok_or_else(|| format!("{src}: no vectors"))
+}
+
+/// Bounds of the origins and non-empty boxes of some vectors, the grid's default (`None` for none).
+pub(crate) fn vector_bounds<V: std::borrow::Borrow<Vector>>(
+    vs: impl IntoIterator<Item = V>,
+) -> Option<(DVec3, DVec3)> {
     let mut lo = DVec3::splat(f64::INFINITY);
     let mut hi = DVec3::splat(f64::NEG_INFINITY);
-    for v in vectors_of(bytes, vfmt, src.to_string()) {
-        let (_, v) = v.map_err(|e| e.to_string())?;
+    for v in vs {
+        let v = v.borrow();
         lo = lo.min(v.ray.origin);
         hi = hi.max(v.ray.origin);
         if !v.bx.is_empty() {
@@ -205,10 +225,7 @@ pub(crate) fn file_bounds(
             hi = hi.max(v.bx.max);
         }
     }
-    if !lo.is_finite() {
-        return Err(format!("{src}: no vectors"));
-    }
-    Ok((lo, hi))
+    lo.is_finite().then_some((lo, hi))
 }
 
 /// The file's vectors quantised by `q`, streamed; the first error stops the stream and is kept in `failure`.
