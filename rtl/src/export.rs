@@ -239,6 +239,18 @@ pub fn slab_fix_verilog_ladder(fmt: &FixFormat) -> Result<String, String> {
     crate::with_slab_fix_ladder!(fmt, S, { slab_fix_verilog_of::<S>(fmt) })
 }
 
+/// `(module, Verilog, latency)` of the default fixed slab tester for any format of the grid ladder (the
+/// formal conservativeness proofs take the smallest, `g6`, which `export_all` does not write).
+pub fn slab_fix_ladder_default(fmt: &FixFormat) -> Result<(String, String, usize), String> {
+    crate::with_slab_fix_ladder!(fmt, S, {
+        (
+            slab_fix_module_cuts(fmt, <S as crate::slab::fix::SlabFixIo>::CUTS),
+            slab_fix_verilog_of::<S>(fmt),
+            <S as crate::io::SlabIo>::LATENCY,
+        )
+    })
+}
+
 /// Verilog of the float slab tester for any format of the float ladder, for the fit.
 pub fn slab_float_verilog_ladder(f: &golden::format::float::FloatFormat) -> Result<String, String> {
     crate::with_slab_float_ladder!(f, S, { slab_float_verilog_of::<S>() })

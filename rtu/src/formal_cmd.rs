@@ -45,6 +45,31 @@ fn proofs(quick: bool, verilog: &Path) -> Result<Vec<Proof>, String> {
     }
     // The fixed cull-plane testers' table (every preset reads R = 8).
     v.extend(tb::formal::recip_table_proofs(8, true, true));
+    // Conservativeness end to end: the fixed slab tester of the smallest ladder grid (G = 6, with the
+    // mutants, in the quick set) and every exported fixed slab tester.
+    let g6 = golden::format::fixed::FixFormat::grid(6).map_err(|e| e.to_string())?;
+    let (module, text, l) = rtl::export::slab_fix_ladder_default(&g6)?;
+    v.extend(tb::formal::conservative::slab_fix_proofs(
+        &g6, &module, &text, l, true, true,
+    )?);
+    for fmt in golden::format::fixed::FixFormat::presets() {
+        let (module, text) = (
+            rtl::export::slab_fix_module(&fmt),
+            rtl::export::slab_fix_verilog(&fmt)?,
+        );
+        let l = rtl::slab::fix::slab_fix_latency(rtl::slab::fix::SLAB_FIX_CUTS);
+        v.extend(tb::formal::conservative::slab_fix_proofs(
+            &fmt, &module, &text, l, false, false,
+        )?);
+    }
+    for ((module, text, l), fmt) in rtl::export::slab_fix_deep_verilog()
+        .into_iter()
+        .zip(golden::format::fixed::FixFormat::presets())
+    {
+        v.extend(tb::formal::conservative::slab_fix_proofs(
+            &fmt, &module, &text, l, false, false,
+        )?);
+    }
     let lat_path = verilog.join("latency.csv");
     let lat =
         std::fs::read_to_string(&lat_path).map_err(|e| format!("{}: {e}", lat_path.display()))?;

@@ -28,6 +28,8 @@
 //! maximum are IEEE 754-2019 `minimum`/`maximum` (NaN if either operand is NaN, `-0 < +0`), where the
 //! reference's `min`/`max` are SMT-LIB's (the other operand when one is NaN, either zero of a `±0` pair).
 
+pub mod conservative;
+
 use golden::format::float::{FloatFormat, Rounding};
 use std::path::{Path, PathBuf};
 use std::process::Command;
@@ -89,6 +91,9 @@ pub struct Proof {
     pub harness: String,
     /// Yosys commands run before the sources are read (reference circuits).
     pub prelude: String,
+    /// Probes: `(harness wire, flattened design wire)` pairs, each harness wire (declared, undriven)
+    /// connected to the module's internal wire after flattening, e.g. `("pa", "dut.mul_entry_0.a")`.
+    pub probes: Vec<(String, String)>,
     /// Part of the quick set `scripts/test` runs.
     pub quick: bool,
 }
@@ -172,9 +177,11 @@ impl Tools {
                 .output()
                 .map_err(|e| format!("formal tools: cannot start {t}: {e}"))?;
         }
-        Ok(Self {
-            bin: bin.to_path_buf(),
-        })
+        // The proofs run in their own folders: a relative `bin` would not be found from there.
+        let bin = bin
+            .canonicalize()
+            .map_err(|e| format!("formal tools: {}: {e}", bin.display()))?;
+        Ok(Self { bin })
     }
 }
 
@@ -307,6 +314,7 @@ pub fn float_unit_proofs(f: &FloatFormat, mutants: bool) -> Vec<Proof> {
                 sources: vec![(format!("{module}.v"), text.clone())],
                 harness: binary_harness(f, &module, *lat),
                 prelude,
+                probes: vec![],
                 quick,
             };
             if mutants && quick {
@@ -327,6 +335,7 @@ pub fn float_unit_proofs(f: &FloatFormat, mutants: bool) -> Vec<Proof> {
         sources: vec![(format!("{cmp_module}.v"), uv.cmp.clone())],
         harness: cmp_harness(f, &cmp_module),
         prelude: symfpu_ref("-compare", f, "ref_cmp"),
+        probes: vec![],
         quick,
     });
     let mm_module = format!("fp_min_max_{}", f.name());
@@ -343,6 +352,7 @@ pub fn float_unit_proofs(f: &FloatFormat, mutants: bool) -> Vec<Proof> {
         sources: vec![(format!("{mm_module}.v"), uv.min_max.clone())],
         harness: min_max_harness(f, &mm_module, rtl::fp::min_max::FP_MIN_MAX_LATENCY),
         prelude: symfpu_ref("-op min", f, "ref_min") + &symfpu_ref("-op max", f, "ref_max"),
+        probes: vec![],
         quick,
     };
     if mutants && quick {
@@ -519,6 +529,7 @@ pub fn mul_round_proofs(
             sources: vec![(format!("{module}.v"), text.clone())],
             harness: mul_round_harness(&module, d, i, t, s, ceil),
             prelude: String::new(),
+            probes: vec![],
             quick: fmt.g == 8,
         };
         if mutants {
@@ -630,6 +641,7 @@ endmodule
         sources: vec![(format!("{module}.v"), text)],
         harness,
         prelude: String::new(),
+        probes: vec![],
         quick,
     };
     let mut v = vec![];
@@ -728,6 +740,7 @@ pub fn pipeline_proofs(
         sources: vec![(format!("{module}.v"), text.into())],
         harness: pipeline_harness(module, lat),
         prelude: String::new(),
+        probes: vec![],
         quick,
     };
     let mut v = vec![];
@@ -844,6 +857,14 @@ fn sby_file(p: &Proof, timeout_s: u64) -> String {
         reads += &format!("read_verilog -sv {name}\n");
         files += &format!("{name}\n");
     }
+    let mut probes = String::new();
+    if !p.probes.is_empty() {
+        probes += "cd formal_top\n";
+        for (w, at) in &p.probes {
+            probes += &format!("connect -set {w} {at}\n");
+        }
+        probes += "cd ..\n";
+    }
     format!(
         "\
 [options]
@@ -858,7 +879,7 @@ smtbmc boolector
 {prelude}{reads}read_verilog -formal harness.sv
 prep -top formal_top
 flatten
-setundef -undriven -anyseq
+{probes}setundef -undriven -anyseq
 opt_merge
 opt_clean
 
