@@ -95,6 +95,13 @@ fn proofs(quick: bool, verilog: &Path) -> Result<Vec<Proof>, String> {
         if !(header.contains(",valid_in,") && header.contains(",tag_in,")) {
             continue;
         }
+        // The fixed pair's edge and distance compares, from the pair's own Verilog.
+        if module.starts_with("bundle_fix_") {
+            let b8 = module.starts_with("bundle_fix_g8_");
+            v.extend(tb::formal::bundle::pair_compare_proofs(
+                module, &text, b8, true,
+            )?);
+        }
         let smallest = module == "slab_fix_g8_i12f8_t14f4";
         v.extend(tb::formal::pipeline_proofs(
             module, &text, l, smallest, true,

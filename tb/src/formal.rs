@@ -28,6 +28,7 @@
 //! maximum are IEEE 754-2019 `minimum`/`maximum` (NaN if either operand is NaN, `-0 < +0`), where the
 //! reference's `min`/`max` are SMT-LIB's (the other operand when one is NaN, either zero of a `±0` pair).
 
+pub mod bundle;
 pub mod conservative;
 
 use golden::format::float::{FloatFormat, Rounding};
