@@ -93,6 +93,10 @@ fn proofs(quick: bool, verilog: &Path) -> Result<Vec<Proof>, String> {
             .find(|l| l.starts_with(&format!("module {module}(")))
             .unwrap_or("");
         if !(header.contains(",valid_in,") && header.contains(",tag_in,")) {
+            if module.starts_with("bundle_split_") {
+                let b12 = module.starts_with("bundle_split_g12_");
+                v.extend(tb::formal::split::split_proofs(module, &text, b12, true)?);
+            }
             continue;
         }
         // The fixed pair's edge and distance compares, from the pair's own Verilog.

@@ -30,6 +30,7 @@
 
 pub mod bundle;
 pub mod conservative;
+pub mod split;
 
 use golden::format::float::{FloatFormat, Rounding};
 use std::path::{Path, PathBuf};
@@ -95,6 +96,10 @@ pub struct Proof {
     /// Probes: `(harness wire, flattened design wire)` pairs, each harness wire (declared, undriven)
     /// connected to the module's internal wire after flattening, e.g. `("pa", "dut.mul_entry_0.a")`.
     pub probes: Vec<(String, String)>,
+    /// Cut points: flattened design wires whose drivers are replaced by a free value in every clock
+    /// (Yosys `cutpoint`), an over-approximation that keeps a safety proof sound, e.g.
+    /// `dut.pair_all_hit`.
+    pub cuts: Vec<String>,
     /// Part of the quick set `scripts/test` runs.
     pub quick: bool,
 }
@@ -316,6 +321,7 @@ pub fn float_unit_proofs(f: &FloatFormat, mutants: bool) -> Vec<Proof> {
                 harness: binary_harness(f, &module, *lat),
                 prelude,
                 probes: vec![],
+                cuts: vec![],
                 quick,
             };
             if mutants && quick {
@@ -337,6 +343,7 @@ pub fn float_unit_proofs(f: &FloatFormat, mutants: bool) -> Vec<Proof> {
         harness: cmp_harness(f, &cmp_module),
         prelude: symfpu_ref("-compare", f, "ref_cmp"),
         probes: vec![],
+        cuts: vec![],
         quick,
     });
     let mm_module = format!("fp_min_max_{}", f.name());
@@ -354,6 +361,7 @@ pub fn float_unit_proofs(f: &FloatFormat, mutants: bool) -> Vec<Proof> {
         harness: min_max_harness(f, &mm_module, rtl::fp::min_max::FP_MIN_MAX_LATENCY),
         prelude: symfpu_ref("-op min", f, "ref_min") + &symfpu_ref("-op max", f, "ref_max"),
         probes: vec![],
+        cuts: vec![],
         quick,
     };
     if mutants && quick {
@@ -531,6 +539,7 @@ pub fn mul_round_proofs(
             harness: mul_round_harness(&module, d, i, t, s, ceil),
             prelude: String::new(),
             probes: vec![],
+            cuts: vec![],
             quick: fmt.g == 8,
         };
         if mutants {
@@ -643,6 +652,7 @@ endmodule
         harness,
         prelude: String::new(),
         probes: vec![],
+        cuts: vec![],
         quick,
     };
     let mut v = vec![];
@@ -742,6 +752,7 @@ pub fn pipeline_proofs(
         harness: pipeline_harness(module, lat),
         prelude: String::new(),
         probes: vec![],
+        cuts: vec![],
         quick,
     };
     let mut v = vec![];
@@ -865,6 +876,9 @@ fn sby_file(p: &Proof, timeout_s: u64) -> String {
             probes += &format!("connect -set {w} {at}\n");
         }
         probes += "cd ..\n";
+    }
+    for w in &p.cuts {
+        probes += &format!("cutpoint formal_top/w:{w}\n");
     }
     format!(
         "\

@@ -107,6 +107,7 @@ pub fn pair_compare_proofs(
             harness: edge_harness(&module, vb, ub),
             prelude: String::new(),
             probes: vec![],
+            cuts: vec![],
             quick,
         };
         if mutants {
@@ -161,6 +162,7 @@ pub fn pair_compare_proofs(
             harness: dist_harness(&module, vb, tb, ub, s),
             prelude: String::new(),
             probes: vec![],
+            cuts: vec![],
             quick,
         };
         if mutants {

@@ -105,6 +105,7 @@ pub fn slab_fix_proofs(
         harness: slab_fix_harness(fmt, module, lat),
         prelude: String::new(),
         probes: slab_fix_probes(),
+        cuts: vec![],
         quick,
     };
     let mut v = vec![p.clone()];
