@@ -251,6 +251,20 @@ pub fn slab_fix_ladder_default(fmt: &FixFormat) -> Result<(String, String, usize
     })
 }
 
+/// `(module, Verilog, latency)` of the default float slab tester for any format of the float ladder
+/// (the formal conservativeness proof takes the smallest, `e5m3`).
+pub fn slab_float_ladder_default(
+    f: &golden::format::float::FloatFormat,
+) -> Result<(String, String, usize), String> {
+    crate::with_slab_float_ladder!(f, S, {
+        (
+            slab_float_module_cuts(f, <S as crate::slab::float::SlabFloatIo>::CUTS),
+            slab_float_verilog_of::<S>(),
+            <S as crate::io::SlabIo>::LATENCY,
+        )
+    })
+}
+
 /// Verilog of the float slab tester for any format of the float ladder, for the fit.
 pub fn slab_float_verilog_ladder(f: &golden::format::float::FloatFormat) -> Result<String, String> {
     crate::with_slab_float_ladder!(f, S, { slab_float_verilog_of::<S>() })

@@ -40,6 +40,12 @@ fn proofs(quick: bool, verilog: &Path) -> Result<Vec<Proof>, String> {
     for f in tb::formal::FORMAL_FLOAT_FORMATS {
         v.extend(tb::formal::float_unit_proofs(&f, true));
     }
+    // The float slab tester in the smallest format of the float ladder (E5M3).
+    let e5m3 = golden::format::float::FloatFormat { e: 5, m: 3 };
+    let (module, text, l) = rtl::export::slab_float_ladder_default(&e5m3)?;
+    v.extend(tb::formal::conservative_float::slab_float_proofs(
+        &e5m3, &module, &text, l, false, true,
+    )?);
     for fmt in golden::format::fixed::FixFormat::presets() {
         v.extend(tb::formal::mul_round_proofs(&fmt, true)?);
     }

@@ -1,7 +1,9 @@
 //! Formal proofs on the exported Verilog: the float units against a correctly rounded reference, the
-//! fixed multiply-round units against a full-width reference, and every exported tester's latency,
-//! valid and tag by k-induction; each property with a mutant that must fail, its counterexample kept as a
-//! VCD.
+//! fixed multiply-round units against a full-width reference, every exported tester's latency, valid
+//! and tag by k-induction, the slab testers' conservativeness end to end ([`conservative`] for the fixed
+//! tester, [`conservative_float`] for the float one), the bundle pair's compares ([`bundle`]) and the
+//! results processor's job accounting ([`split`]); each property with a mutant that must fail, its
+//! counterexample kept as a VCD.
 //!
 //! A [`Proof`] is a harness (`formal_top`, SystemVerilog immediate assertions), the Verilog it checks and
 //! the Yosys commands that build its reference; [`run`] hands each to SymbiYosys (`sby`, engine `smtbmc`
@@ -30,6 +32,7 @@
 
 pub mod bundle;
 pub mod conservative;
+pub mod conservative_float;
 pub mod split;
 
 use golden::format::float::{FloatFormat, Rounding};
