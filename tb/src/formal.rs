@@ -96,8 +96,9 @@ pub struct Proof {
     pub harness: String,
     /// Yosys commands run before the sources are read (reference circuits).
     pub prelude: String,
-    /// Probes: `(harness wire, flattened design wire)` pairs, each harness wire (declared, undriven)
-    /// connected to the module's internal wire after flattening, e.g. `("pa", "dut.mul_entry_0.a")`.
+    /// Probes: `(harness wire, flattened design wire)` pairs, each harness wire (declared `(* keep *)`,
+    /// undriven) connected to the module's internal wire after flattening, e.g.
+    /// `("pa", "dut.mul_entry_0.a")`.
     pub probes: Vec<(String, String)>,
     /// Cut points: flattened design wires whose drivers are replaced by a free value in every clock
     /// (Yosys `cutpoint`), an over-approximation that keeps a safety proof sound, e.g.

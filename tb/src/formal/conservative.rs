@@ -162,8 +162,8 @@ fn slab_fix_harness(fmt: &FixFormat, module: &str, lat: usize) -> String {
             "  (* anyconst *) reg signed [G-1:0] o_lo{a}, o_hi{a}, lo{a}, hi{a}, ow{a};
   (* anyconst *) reg [I-1:0] m_lo{a}, m_hi{a}, mw{a};
   (* anyconst *) reg neg{a}, dz{a}, big{a};
-  wire [D-1:0] pa_e{a}, pa_x{a};
-  wire [I-1:0] pm_e{a}, pm_x{a};
+  (* keep *) wire [D-1:0] pa_e{a}, pa_x{a};
+  (* keep *) wire [I-1:0] pm_e{a}, pm_x{a};
 "
         );
         ports += &format!(

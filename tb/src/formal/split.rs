@@ -141,9 +141,9 @@ module formal_top(input clock, input rst, input start);
   end
   // The processor's own state (probes): its busy flag, the ray issue and rays-mode flags, and the valid
   // and tag registers of the pair's two tests.
-  wire busy_q, issue_q, rays_q;
-  wire va1, va2, va3, vn1, vn2, vn3;
-  wire [15:0] ta1, ta2, ta3, tn1, tn2, tn3;
+  (* keep *) wire busy_q, issue_q, rays_q;
+  (* keep *) wire va1, va2, va3, vn1, vn2, vn3;
+  (* keep *) wire [15:0] ta1, ta2, ta3, tn1, tn2, tn3;
   always @(*) begin
     // Strengthening invariants: an idle processor has nothing in flight, and the pair's two tests
     // carry the same stream.
