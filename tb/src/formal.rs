@@ -108,6 +108,29 @@ pub struct Proof {
     pub quick: bool,
 }
 
+impl Proof {
+    /// The defaults of a proof of `module` (Verilog `text`): named and formatted after the module,
+    /// expected to hold, a bounded check of one step, no harness, prelude, probes or cuts, not quick.
+    /// Proofs set what differs and take the rest with `..Proof::on(module, text)`.
+    pub fn on(module: &str, text: String) -> Self {
+        Self {
+            name: module.into(),
+            property: String::new(),
+            module: module.into(),
+            format: module.into(),
+            mutant: None,
+            expect: Expect::Holds,
+            engine: Engine::Bmc(1),
+            sources: vec![(format!("{module}.v"), text)],
+            harness: String::new(),
+            prelude: String::new(),
+            probes: vec![],
+            cuts: vec![],
+            quick: false,
+        }
+    }
+}
+
 /// What a proof concluded.
 #[derive(Clone, Debug, PartialEq, Eq)]
 pub enum Verdict {
@@ -316,17 +339,12 @@ pub fn float_unit_proofs(f: &FloatFormat, mutants: bool) -> Vec<Proof> {
             let p = Proof {
                 name: format!("round_{module}"),
                 property: format!("correctly rounded: = symfpu {op} {rm}, NaN canonical"),
-                module: module.clone(),
                 format: f.name(),
-                mutant: None,
-                expect: Expect::Holds,
                 engine: Engine::Bmc(lat + 1),
-                sources: vec![(format!("{module}.v"), text.clone())],
                 harness: binary_harness(f, &module, *lat),
                 prelude,
-                probes: vec![],
-                cuts: vec![],
                 quick,
+                ..Proof::on(&module, text.clone())
             };
             if mutants && quick {
                 v.extend(float_mutants(&p, unit, *mode, f, list));
@@ -338,17 +356,11 @@ pub fn float_unit_proofs(f: &FloatFormat, mutants: bool) -> Vec<Proof> {
     v.push(Proof {
         name: format!("cmp_{cmp_module}"),
         property: "lt, le = symfpu compare lessThan, lessThanOrEqual".into(),
-        module: cmp_module.clone(),
         format: f.name(),
-        mutant: None,
-        expect: Expect::Holds,
-        engine: Engine::Bmc(1),
-        sources: vec![(format!("{cmp_module}.v"), uv.cmp.clone())],
         harness: cmp_harness(f, &cmp_module),
         prelude: symfpu_ref("-compare", f, "ref_cmp"),
-        probes: vec![],
-        cuts: vec![],
         quick,
+        ..Proof::on(&cmp_module, uv.cmp.clone())
     });
     let mm_module = format!("fp_min_max_{}", f.name());
     let mm = Proof {
@@ -356,17 +368,12 @@ pub fn float_unit_proofs(f: &FloatFormat, mutants: bool) -> Vec<Proof> {
         property:
             "IEEE 754-2019 minimum/maximum: NaN if either is NaN, -0 < +0, else = symfpu min/max"
                 .into(),
-        module: mm_module.clone(),
         format: f.name(),
-        mutant: None,
-        expect: Expect::Holds,
         engine: Engine::Bmc(rtl::fp::min_max::FP_MIN_MAX_LATENCY + 1),
-        sources: vec![(format!("{mm_module}.v"), uv.min_max.clone())],
         harness: min_max_harness(f, &mm_module, rtl::fp::min_max::FP_MIN_MAX_LATENCY),
         prelude: symfpu_ref("-op min", f, "ref_min") + &symfpu_ref("-op max", f, "ref_max"),
-        probes: vec![],
-        cuts: vec![],
         quick,
+        ..Proof::on(&mm_module, uv.min_max.clone())
     };
     if mutants && quick {
         let cmp = v.last().expect("pushed").clone();
@@ -534,17 +541,10 @@ pub fn mul_round_proofs(
             property: format!(
                 "{mode}(a * m / 2^{s}) saturated to the {t}-bit t code, m all ones unbounded"
             ),
-            module: module.clone(),
             format: fmt.name(),
-            mutant: None,
-            expect: Expect::Holds,
-            engine: Engine::Bmc(1),
-            sources: vec![(format!("{module}.v"), text.clone())],
             harness: mul_round_harness(&module, d, i, t, s, ceil),
-            prelude: String::new(),
-            probes: vec![],
-            cuts: vec![],
             quick: fmt.g == 8,
+            ..Proof::on(&module, text.clone())
         };
         if mutants {
             let other = rtl::export::mul_round_verilog(fmt, !ceil)?;
@@ -647,17 +647,10 @@ endmodule
             "every entry bounds 2^{}/m over its interval: rl below, rh above",
             r + 1
         ),
-        module: module.clone(),
         format: format!("R = {r}"),
-        mutant: None,
-        expect: Expect::Holds,
-        engine: Engine::Bmc(1),
-        sources: vec![(format!("{module}.v"), text)],
         harness,
-        prelude: String::new(),
-        probes: vec![],
-        cuts: vec![],
         quick,
+        ..Proof::on(&module, text)
     };
     let mut v = vec![];
     if mutant {
@@ -747,17 +740,10 @@ pub fn pipeline_proofs(
         property: format!(
             "latency {lat}: valid_out = valid_in {lat} clocks earlier unless rst was high in one of those clocks, tag_out = tag_in then"
         ),
-        module: module.into(),
-        format: module.into(),
-        mutant: None,
-        expect: Expect::Holds,
         engine: Engine::Induction(lat + 1),
-        sources: vec![(format!("{module}.v"), text.into())],
         harness: pipeline_harness(module, lat),
-        prelude: String::new(),
-        probes: vec![],
-        cuts: vec![],
         quick,
+        ..Proof::on(&module, text.into())
     };
     let mut v = vec![];
     if mutant {

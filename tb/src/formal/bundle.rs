@@ -17,7 +17,7 @@
 //! Mutants: the left product declared one bit narrower (its top bit lost), the compare made strict, the
 //! distance compare's shift one short, and its zero-direction case dropped.
 
-use super::{module_body, mutant_of, Engine, Expect, Proof};
+use super::{module_body, mutant_of, Expect, Proof};
 
 /// `(name, width)` of every `input`/`output` port declared in `body` (`input wire  [8:0] a;`).
 fn port_widths(body: &str) -> Vec<(String, usize)> {
@@ -39,6 +39,14 @@ fn port_widths(body: &str) -> Vec<(String, usize)> {
             Some((name.trim().trim_end_matches(';').to_string(), w))
         })
         .collect()
+}
+
+/// The width of port `p` among `w` (from [`port_widths`]), or an error naming `module`.
+fn port_width(w: &[(String, usize)], module: &str, p: &str) -> Result<usize, String> {
+    w.iter()
+        .find(|(n, _)| n == p)
+        .map(|x| x.1)
+        .ok_or_else(|| format!("{module}: no port {p}"))
 }
 
 /// The leaf modules of `text` whose names end in `_<kind>_<k>`, grouped by their body with the name
@@ -86,29 +94,17 @@ pub fn pair_compare_proofs(
     }
     for (module, body, n) in edges {
         let w = port_widths(&body);
-        let width = |p: &str| {
-            w.iter()
-                .find(|(n, _)| n == p)
-                .map(|x| x.1)
-                .ok_or_else(|| format!("{module}: no port {p}"))
-        };
+        let width = |p: &str| port_width(&w, &module, p);
         let (vb, ub) = (width("a")?, width("m")?);
         let p = Proof {
             name: format!("edge_{module}"),
             property: format!(
                 "edge compare: le = a * m <= b * n, signed, exact ({n} instances in {pair})"
             ),
-            module: module.clone(),
             format: format!("a, b {vb} bits; m, n {ub} bits"),
-            mutant: None,
-            expect: Expect::Holds,
-            engine: Engine::Bmc(1),
-            sources: vec![(format!("{module}.v"), body.clone())],
             harness: edge_harness(&module, vb, ub),
-            prelude: String::new(),
-            probes: vec![],
-            cuts: vec![],
             quick,
+            ..Proof::on(&module, body.clone())
         };
         if mutants {
             let pw = vb + ub;
@@ -131,12 +127,7 @@ pub fn pair_compare_proofs(
     }
     for (module, body, n) in dists {
         let w = port_widths(&body);
-        let width = |p: &str| {
-            w.iter()
-                .find(|(n, _)| n == p)
-                .map(|x| x.1)
-                .ok_or_else(|| format!("{module}: no port {p}"))
-        };
+        let width = |p: &str| port_width(&w, &module, p);
         let (vb, tb, ub) = (width("e")?, width("t")?, width("u")?);
         let shift_line = body
             .lines()
@@ -153,17 +144,10 @@ pub fn pair_compare_proofs(
             property: format!(
                 "distance compare: le = u == 0 ? e <= 0 : t == +inf ? 1 : t == -inf ? 0 : e * 2^{s} <= t * u, exact ({n} instances in {pair})"
             ),
-            module: module.clone(),
             format: format!("e {vb} bits, t {tb} bits, u {ub} bits"),
-            mutant: None,
-            expect: Expect::Holds,
-            engine: Engine::Bmc(1),
-            sources: vec![(format!("{module}.v"), body.clone())],
             harness: dist_harness(&module, vb, tb, ub, s),
-            prelude: String::new(),
-            probes: vec![],
-            cuts: vec![],
             quick,
+            ..Proof::on(&module, body.clone())
         };
         if mutants {
             v.push(mutant_of(

@@ -96,17 +96,12 @@ pub fn slab_fix_proofs(
         property: "conservative: every ray of the quantised intervals that hits exactly is a hit, \
                    and [t_entry, t_exit] encloses its exact interval"
             .into(),
-        module: module.into(),
         format: fmt.name(),
-        mutant: None,
-        expect: Expect::Holds,
         engine: Engine::Bmc(lat + 1),
-        sources: vec![(format!("{module}.v"), text.into())],
         harness: slab_fix_harness(fmt, module, lat),
-        prelude: String::new(),
         probes: slab_fix_probes(),
-        cuts: vec![],
         quick,
+        ..Proof::on(&module, text.into())
     };
     let mut v = vec![p.clone()];
     if mutants {

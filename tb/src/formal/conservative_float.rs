@@ -127,17 +127,12 @@ pub fn slab_float_proofs(
         let p = Proof {
             name: format!("cons_{module}_{}", piece.tag()),
             property: piece.property(),
-            module: module.into(),
             format: f.name(),
-            mutant: None,
-            expect: Expect::Holds,
             engine: Engine::Bmc(lat + 1),
-            sources: vec![(format!("{module}.v"), text.into())],
             harness: slab_float_harness(f, module, lat, piece),
-            prelude: String::new(),
             probes: slab_float_probes(),
-            cuts: vec![],
             quick,
+            ..Proof::on(&module, text.into())
         };
         v.push(p.clone());
         if !mutants {

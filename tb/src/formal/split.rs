@@ -57,17 +57,12 @@ pub fn split_proofs(
             "every job taken (start with ready, no rst) reports done exactly once within {max} clocks unless reset, \
              no done without a job, ready low exactly while a job runs, clocks = its clocks"
         ),
-        module: module.into(),
-        format: module.into(),
-        mutant: None,
-        expect: Expect::Holds,
         engine: Engine::Induction(max + 5),
-        sources: vec![(format!("{module}.v"), text.into())],
         harness: split_harness(module, max),
-        prelude: String::new(),
         probes: split_probes(),
         cuts: vec!["dut.pair_all_hit".into(), "dut.pair_all_miss".into()],
         quick,
+        ..Proof::on(&module, text.into())
     };
     let mut v = vec![p.clone()];
     if mutants {
