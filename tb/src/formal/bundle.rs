@@ -17,7 +17,7 @@
 //! Mutants: the left product declared one bit narrower (its top bit lost), the compare made strict, the
 //! distance compare's shift one short, and its zero-direction case dropped.
 
-use super::{module_body, mutant_of, Expect, Proof};
+use super::{module_body, mutant_of, Proof};
 
 /// `(name, width)` of every `input`/`output` port declared in `body` (`input wire  [8:0] a;`).
 fn port_widths(body: &str) -> Vec<(String, usize)> {

@@ -66,7 +66,7 @@
 //! bound of axis 0's entry for a negative distance taken from the wrong end of the interval (caught by
 //! the operand assertion), and the final compare made strict (a grazing ray missed).
 
-use super::{module_body, mutant_with, mutate, Engine, Expect, Proof};
+use super::{module_body, mutant_with, mutate, Engine, Proof};
 use golden::format::fixed::FixFormat;
 
 /// `text` with the single occurrence of `find` inside module `module` replaced.

@@ -52,7 +52,7 @@
 //! Mutants: axis 0's entry adder rounding up (RU in place of RD), axis 0's entry multiplier taking the
 //! wrong inverse end, and the final compare made strict.
 
-use super::{mutant_with, mutate, Engine, Expect, Proof};
+use super::{mutant_with, mutate, Engine, Proof};
 use golden::format::float::FloatFormat;
 
 /// What a piece of the chain asserts; the pieces before it are assumed.

@@ -32,7 +32,7 @@
 //! while a job runs (the running job overwritten, its `done` lost), a split job's `done` never raised,
 //! and a decided job that leaves the processor busy.
 
-use super::{mutant_of, Engine, Expect, Proof};
+use super::{mutant_of, Engine, Proof};
 
 /// The longest job in clocks: a split of all `rays` rays, `2L + 1 + rays/2` (`L` the pair's latency).
 pub fn longest_job(pair_latency: usize, rays: usize) -> usize {
