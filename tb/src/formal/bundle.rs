@@ -214,6 +214,7 @@ endmodule
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::formal::Expect;
 
     #[test]
     fn port_widths_reads_declarations() {

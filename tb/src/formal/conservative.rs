@@ -261,6 +261,7 @@ fn slab_fix_probes() -> Vec<(String, String)> {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::formal::Expect;
 
     #[test]
     fn every_slab_fix_mutant_changes_the_module() {

@@ -378,6 +378,7 @@ endmodule
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::formal::Expect;
 
     #[test]
     fn every_slab_float_mutant_changes_the_module() {

@@ -158,6 +158,7 @@ endmodule
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::formal::Expect;
 
     #[test]
     fn the_longest_job_is_a_split_of_every_ray() {
