@@ -346,9 +346,11 @@ pub enum Family {
     PlaneFrac { cf: CullFixFormat, k: usize },
     /// The float chained slab + cull-plane tester, `k` planes.
     PlaneFloat { cf: CullFloatFormat, k: usize },
-    /// The fixed AllHit / AnyHit bundle pair.
+    /// The fixed AllHit / AnyHit bundle pair, with its cut points
+    /// (`crate::bundle::edge_fix::cut`).
     BundleFix {
         bf: golden::bundle::fix::BundleFixFormat,
+        cuts: usize,
     },
     /// The float AllHit / AnyHit bundle pair.
     BundleFloat {
@@ -484,12 +486,14 @@ pub fn catalog() -> Vec<Exported> {
             );
         }
     }
-    for bf in golden::bundle::fix::BundleFixFormat::presets() {
-        add(
-            crate::bundle::pair_fix::bundle_fix_module(&bf),
-            crate::bundle::pair_fix::BUNDLE_FIX_LATENCY,
-            Family::BundleFix { bf },
-        );
+    for (cuts, _) in crate::bundle::pair_fix::BUNDLE_FIX_DEPTHS {
+        for bf in golden::bundle::fix::BundleFixFormat::presets() {
+            add(
+                crate::bundle::pair_fix::bundle_fix_module_cuts(&bf, cuts),
+                crate::bundle::pair_fix::bundle_fix_latency(cuts),
+                Family::BundleFix { bf, cuts },
+            );
+        }
     }
     for bf in &golden::bundle::fix::BundleFixFormat::presets()[1..] {
         add(

@@ -543,7 +543,7 @@ fn bundle_setup_from(
     src: String,
 ) -> Result<BundleSetup, String> {
     let map = match e.family {
-        Family::BundleFix { bf } => {
+        Family::BundleFix { bf, .. } => {
             let (lo, hi) = match bounds {
                 Some(b) => parse_bounds(b)?,
                 None => crate::run_bundles::bounds(vs.iter().map(|(_, v)| v))
@@ -576,7 +576,7 @@ fn bundle_rows(b: &BundleSetup) -> Result<(Vec<Vec<u64>>, Vec<Vec<u64>>), String
     for (n, (line, v)) in b.vs.iter().enumerate() {
         let tag = tb::ip::seq_tag(n);
         let (row, (all_hit, all_miss)) = match b.e.family {
-            Family::BundleFix { bf } => {
+            Family::BundleFix { bf, .. } => {
                 let map = b.map.expect("a grid for a fixed format");
                 let q = (|| {
                     Ok::<_, golden::Error>((

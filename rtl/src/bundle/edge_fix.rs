@@ -1,6 +1,6 @@
 //! `BundleTest`: one of the pair of fixed-point bundle testers, AllHit or AnyHit (a constructor
 //! argument: the two share this structure and differ only in which bounds they take), fully pipelined
-//! (one test per clock), [`BUNDLE_TEST_LATENCY`] clocks of latency. The AllHit tester can be switched to
+//! (one test per clock), [`bundle_test_latency`]`(CUTS)` clocks of latency (3, or 5 with every cut point). The AllHit tester can be switched to
 //! AnyHit bounds test by test (`any_mode`): in two-ray mode the pair runs AnyHit on both testers.
 //!
 //! Bit for bit `golden::bundle::edge::conditions_hold` in `golden::bundle::fix::FixArith` with `t_min = 0`:
@@ -34,7 +34,7 @@
 //! Input contract (what the quantisers produce): direction codes of magnitude at most `2^(D-2)` (so that
 //! `-d` fits `D` bits). Every other code is taken as it comes.
 //!
-//! # Outputs (registered, [`BUNDLE_TEST_LATENCY`] clocks after the inputs)
+//! # Outputs (registered, [`bundle_test_latency`]`(CUTS)` clocks after the inputs)
 //! - `valid_out`, `tag_out`, `pass`: all fifteen conditions hold.
 //!
 //! # Stages
@@ -46,7 +46,9 @@
 //!    `c`, by the sign of `e_a`) and of `x_c` (by the sign of `x_c`); for each distance the multiplier of
 //!    `t_max` (by the sign of `t_max`); the sign checks `D` (`x >= 0`) folded into one flag with `N`.
 //! 3. `_q3` decide: six [`EdgeLe`] (products `V + D` bits, 34 for b16), three [`DistLe`] (products
-//!    `T + D` bits, 41 for b16) and the AND of everything.
+//!    `T + D` bits, 41 for b16) and the AND of everything. Two optional cut points ([`cut`]) split it:
+//!    [`cut::PRODUCT`] registers the products inside each compare (side data `_qp`), [`cut::COMPARE`]
+//!    the nine compares' answers (`le_qc`, side data `_qc`) before their AND.
 //!
 //! The products and their compares share stage 3 so that no signal wider than `T` bits is a rust-hdl
 //! register (wide values simulate bit by bit); stage 2 is light and a synthesis flow may retime into it.
@@ -56,16 +58,49 @@
 use crate::bundle::dist_le::DistLe;
 use crate::bundle::edge_le::EdgeLe;
 use crate::bundle::fold_diff::FoldDiff;
+use crate::cut::Cut;
 use crate::slab::fix::TAG_BITS;
 use golden::bundle::fix::BundleFixFormat;
 use rust_hdl::prelude::*;
 
-/// Clocks from a test entering a [`BundleTest`] to its result leaving.
-pub const BUNDLE_TEST_LATENCY: usize = 3;
+/// The optional cut points of the bundle tester (stage 3), one bit each of its `CUTS` parameter: a
+/// register where the bit is set, a wire where it is clear ([`crate::cut::Cut`]). Stages 1, 2 and 3's
+/// output register are always there.
+pub mod cut {
+    /// After the products, inside each compare ([`crate::bundle::edge_le::EdgeLe`]'s `lhs_q`,
+    /// `rhs_q`, [`crate::bundle::dist_le::DistLe`]'s `prod_q`, `side_q`; side data `_qp`).
+    pub const PRODUCT: usize = 1 << 0;
+    /// After the compares: their nine answers (`le_qc`) and the side data (`_qc`), before the AND.
+    pub const COMPARE: usize = 1 << 1;
+    /// Every cut point.
+    pub const ALL: usize = (1 << 2) - 1;
+}
+
+/// The cut points of the 3-clock tester (the default of [`BundleTest`]'s `CUTS`): none, a whole
+/// multiply, compare and AND in the last clock.
+pub const BUNDLE_TEST_CUTS: usize = 0;
+
+/// The cut points of the 5-clock tester: products and compares registered.
+pub const BUNDLE_TEST_CUTS_DEEP: usize = cut::ALL;
+
+/// Clocks from a test entering a `BundleTest` with cut points `cuts` to its result leaving: three, and
+/// one per cut.
+pub const fn bundle_test_latency(cuts: usize) -> usize {
+    3 + (cuts & cut::ALL).count_ones() as usize
+}
+
+/// Clocks from a test entering the default [`BundleTest`] to its result leaving.
+pub const BUNDLE_TEST_LATENCY: usize = bundle_test_latency(BUNDLE_TEST_CUTS);
 
 /// One bundle tester; see the module documentation.
 #[derive(LogicBlock)]
-pub struct BundleTest<const G: usize, const V: usize, const D: usize, const T: usize> {
+pub struct BundleTest<
+    const G: usize,
+    const V: usize,
+    const D: usize,
+    const T: usize,
+    const CUTS: usize = BUNDLE_TEST_CUTS,
+> {
     pub clock: Signal<In, Clock>,
     /// Synchronous reset: high at a clock edge clears every valid bit (data registers keep their values).
     pub rst: Signal<In, Bit>,
@@ -131,16 +166,36 @@ pub struct BundleTest<const G: usize, const V: usize, const D: usize, const T: u
     // stage 3: edges k = 0..6 are (a, c) = (0,1), (0,2), (1,0), (1,2), (2,0), (2,1)
     edge_cmp: [EdgeLe<V, D>; 6],
     dist_cmp: [DistLe<V, T, D>; 3],
+    /// 1 where the product cut is a register: the valid bit there is cleared by `rst` (a wire passes
+    /// it on to the next register, which is).
+    reg_p: Constant<Bit>,
+    ok_qp: Cut<Bit>,
+    valid_qp: Cut<Bit>,
+    tag_qp: Cut<Bits<TAG_BITS>>,
+    /// 1 where the compare cut is a register.
+    reg_c: Constant<Bit>,
+    /// The compares' answers: edges 0..6, then distances.
+    le_qc: [Cut<Bit>; 9],
+    ok_qc: Cut<Bit>,
+    valid_qc: Cut<Bit>,
+    tag_qc: Cut<Bits<TAG_BITS>>,
     all: Signal<Local, Bit>,
     pass_q3: DFF<Bit>,
     valid_q3: DFF<Bit>,
     tag_q3: DFF<Bits<TAG_BITS>>,
 }
 
-impl<const G: usize, const V: usize, const D: usize, const T: usize> BundleTest<G, V, D, T> {
+impl<const G: usize, const V: usize, const D: usize, const T: usize, const CUTS: usize>
+    BundleTest<G, V, D, T, CUTS>
+{
     /// The AllHit tester (`all_hit = true`) or the AnyHit tester for `bf`, whose widths must equal the
     /// parameters.
     pub fn new(bf: &BundleFixFormat, all_hit: bool) -> Self {
+        assert!(
+            CUTS & !cut::ALL == 0,
+            "BundleTest cut points {CUTS:#x}: only the cuts of rtl::bundle::edge_fix::cut exist"
+        );
+        let (p, c) = (CUTS & cut::PRODUCT != 0, CUTS & cut::COMPARE != 0);
         assert!(
             bf.base.g as usize == G
                 && V == G + 1
@@ -202,8 +257,19 @@ impl<const G: usize, const V: usize, const D: usize, const T: usize> BundleTest<
             ok_q2: Default::default(),
             valid_q2: Default::default(),
             tag_q2: Default::default(),
-            edge_cmp: Default::default(),
-            dist_cmp: std::array::from_fn(|_| DistLe::new(bf.dist_shift() as usize)),
+            edge_cmp: std::array::from_fn(|_| EdgeLe::new(p)),
+            dist_cmp: std::array::from_fn(|_| {
+                DistLe::with_register(bf.dist_shift() as usize, p)
+            }),
+            reg_p: Constant::new(p),
+            ok_qp: Cut::new(p),
+            valid_qp: Cut::new(p),
+            tag_qp: Cut::new(p),
+            reg_c: Constant::new(c),
+            le_qc: Cut::array(c),
+            ok_qc: Cut::new(c),
+            valid_qc: Cut::new(c),
+            tag_qc: Cut::new(c),
             all: Default::default(),
             pass_q3: Default::default(),
             valid_q3: Default::default(),
@@ -222,8 +288,8 @@ impl<const G: usize, const V: usize, const D: usize, const T: usize> BundleTest<
     }
 }
 
-impl<const G: usize, const V: usize, const D: usize, const T: usize> Logic
-    for BundleTest<G, V, D, T>
+impl<const G: usize, const V: usize, const D: usize, const T: usize, const CUTS: usize> Logic
+    for BundleTest<G, V, D, T, CUTS>
 {
     #[hdl_gen]
     fn update(&mut self) {
@@ -236,11 +302,22 @@ impl<const G: usize, const V: usize, const D: usize, const T: usize> Logic
             self.e_q2[i].clock.next = self.clock.val();
             self.x_q2[i].clock.next = self.clock.val();
             self.mt_q2[i].clock.next = self.clock.val();
+            self.dist_cmp[i].clock.next = self.clock.val();
         }
         for k in 0..6 {
             self.me_q2[k].clock.next = self.clock.val();
             self.mx_q2[k].clock.next = self.clock.val();
+            self.edge_cmp[k].clock.next = self.clock.val();
         }
+        for j in 0..9 {
+            self.le_qc[j].clock.next = self.clock.val();
+        }
+        self.ok_qp.clock.next = self.clock.val();
+        self.valid_qp.clock.next = self.clock.val();
+        self.tag_qp.clock.next = self.clock.val();
+        self.ok_qc.clock.next = self.clock.val();
+        self.valid_qc.clock.next = self.clock.val();
+        self.tag_qc.clock.next = self.clock.val();
         dff_setup!(
             self, clock, t_q1, empty_q1, valid_q1, tag_q1, sure_q1, t_q2, ok_q2, valid_q2, tag_q2,
             pass_q3, valid_q3, tag_q3
@@ -396,7 +473,8 @@ impl<const G: usize, const V: usize, const D: usize, const T: usize> Logic
         self.valid_q2.d.next = self.valid_q1.q.val() & !self.rst.val();
         self.tag_q2.d.next = self.tag_q1.q.val();
 
-        // Stage 3: products and compares, and the AND of all conditions.
+        // Stage 3: products (cut PRODUCT inside each compare), compares (cut COMPARE), and the AND of all
+        // conditions.
         self.edge_cmp[0].a.next = self.e_q2[0].q.val();
         self.edge_cmp[0].b.next = self.x_q2[1].q.val();
         self.edge_cmp[1].a.next = self.e_q2[0].q.val();
@@ -409,25 +487,41 @@ impl<const G: usize, const V: usize, const D: usize, const T: usize> Logic
         self.edge_cmp[4].b.next = self.x_q2[0].q.val();
         self.edge_cmp[5].a.next = self.e_q2[2].q.val();
         self.edge_cmp[5].b.next = self.x_q2[1].q.val();
-        self.all.next = self.ok_q2.q.val();
         for k in 0..6 {
             self.edge_cmp[k].m.next = self.me_q2[k].q.val();
             self.edge_cmp[k].n.next = self.mx_q2[k].q.val();
-            if !self.edge_cmp[k].le.val() {
-                self.all.next = false;
-            }
+            self.le_qc[k].d.next = self.edge_cmp[k].le.val();
         }
         for i in 0..3 {
             self.dist_cmp[i].e.next = self.e_q2[i].q.val();
             self.dist_cmp[i].t.next = self.t_q2.q.val();
             self.dist_cmp[i].u.next = self.mt_q2[i].q.val();
-            if !self.dist_cmp[i].le.val() {
+            self.le_qc[6 + i].d.next = self.dist_cmp[i].le.val();
+        }
+        // Side data through the cuts; a valid bit is cleared by rst where a cut is a register.
+        self.ok_qp.d.next = self.ok_q2.q.val();
+        self.tag_qp.d.next = self.tag_q2.q.val();
+        if self.reg_p.val() {
+            self.valid_qp.d.next = self.valid_q2.q.val() & !self.rst.val();
+        } else {
+            self.valid_qp.d.next = self.valid_q2.q.val();
+        }
+        self.ok_qc.d.next = self.ok_qp.q.val();
+        self.tag_qc.d.next = self.tag_qp.q.val();
+        if self.reg_c.val() {
+            self.valid_qc.d.next = self.valid_qp.q.val() & !self.rst.val();
+        } else {
+            self.valid_qc.d.next = self.valid_qp.q.val();
+        }
+        self.all.next = self.ok_qc.q.val();
+        for j in 0..9 {
+            if !self.le_qc[j].q.val() {
                 self.all.next = false;
             }
         }
         self.pass_q3.d.next = self.all.val();
-        self.valid_q3.d.next = self.valid_q2.q.val() & !self.rst.val();
-        self.tag_q3.d.next = self.tag_q2.q.val();
+        self.valid_q3.d.next = self.valid_qc.q.val() & !self.rst.val();
+        self.tag_q3.d.next = self.tag_qc.q.val();
 
         self.valid_out.next = self.valid_q3.q.val();
         self.tag_out.next = self.tag_q3.q.val();

@@ -1,5 +1,7 @@
 //! `BundleFix`: the pair of fixed-point bundle testers, AllHit and AnyHit side by side ([`BundleTest`]
-//! twice), fully pipelined (one test per clock), [`BUNDLE_FIX_LATENCY`] clocks of latency. Per clock the
+//! twice), fully pipelined (one test per clock), [`bundle_fix_latency`]`(CUTS)` clocks of latency: 3 for the
+//! default, 5 for the deep configuration (`CUTS` = [`BUNDLE_TEST_CUTS_DEEP`], the products and the
+//! compares registered; module names end in `_p5`). [`BUNDLE_FIX_DEPTHS`] lists the built ones. Per clock the
 //! pair takes either one bundle, which both testers judge, or two single rays, one per tester (the pair of
 //! testing blocks of US 11,308,683 and the "one bundle or two rays" claims of US 11,682,160).
 //!
@@ -31,7 +33,7 @@
 //! - `r_o_lo`, `r_o_hi`, `r_d_lo`, `r_d_hi` (arrays), `r_t`: ray B (its `t_hi`), used in two-ray mode only;
 //! - `in_lo`, `in_hi`: the inner box (AllHit, bundle mode only); `out_lo`, `out_hi`: the outer box.
 //!
-//! # Outputs (registered, [`BUNDLE_FIX_LATENCY`] clocks after the inputs)
+//! # Outputs (registered, [`bundle_fix_latency`]`(CUTS)` clocks after the inputs)
 //! - `valid_out`, `tag_out`;
 //! - `all_hit`: every ray of the bundle hits; in two-ray mode: ray A *may hit* (AnyHit passes);
 //! - `all_miss`: every ray of the bundle misses; in two-ray mode: ray B misses.
@@ -41,7 +43,9 @@
 //! Both testers carry their own valid and tag; the outputs take the AllHit side's and the AnyHit side's
 //! AND (they are equal), so that no child output is left unused.
 
-use crate::bundle::edge_fix::{BundleTest, BUNDLE_TEST_LATENCY};
+use crate::bundle::edge_fix::{
+    bundle_test_latency, BundleTest, BUNDLE_TEST_CUTS, BUNDLE_TEST_CUTS_DEEP,
+};
 use crate::io::SlabIo;
 use crate::slab::fix::{code, TAG_BITS};
 use golden::bundle::edge::BoxPair;
@@ -49,12 +53,29 @@ use golden::bundle::fix::{all_hit_fix, all_miss_fix, BundleFixFormat, FixBundle}
 use golden::format::fixed::FixBox;
 use rust_hdl::prelude::*;
 
-/// Clocks from a test entering `BundleFix` to its result leaving.
-pub const BUNDLE_FIX_LATENCY: usize = BUNDLE_TEST_LATENCY;
+/// Clocks from a test entering a `BundleFix` with cut points `cuts` (those of
+/// [`crate::bundle::edge_fix::cut`]) to its result leaving.
+pub const fn bundle_fix_latency(cuts: usize) -> usize {
+    bundle_test_latency(cuts)
+}
+
+/// Clocks from a test entering the default `BundleFix` to its result leaving.
+pub const BUNDLE_FIX_LATENCY: usize = bundle_fix_latency(BUNDLE_TEST_CUTS);
+
+/// The configurations that are built (exported, tested, timed): `(cuts, name suffix)`; the module name
+/// of a configuration is the format's with this suffix (none for the default).
+pub const BUNDLE_FIX_DEPTHS: [(usize, &str); 2] =
+    [(BUNDLE_TEST_CUTS, ""), (BUNDLE_TEST_CUTS_DEEP, "_p5")];
 
 /// The AllHit + AnyHit pair; see the module documentation.
 #[derive(LogicBlock)]
-pub struct BundleFix<const G: usize, const V: usize, const D: usize, const T: usize> {
+pub struct BundleFix<
+    const G: usize,
+    const V: usize,
+    const D: usize,
+    const T: usize,
+    const CUTS: usize = BUNDLE_TEST_CUTS,
+> {
     pub clock: Signal<In, Clock>,
     /// Synchronous reset: high at a clock edge clears every valid bit (data registers keep their values).
     pub rst: Signal<In, Bit>,
@@ -80,11 +101,13 @@ pub struct BundleFix<const G: usize, const V: usize, const D: usize, const T: us
     pub tag_out: Signal<Out, Bits<TAG_BITS>>,
     pub all_hit: Signal<Out, Bit>,
     pub all_miss: Signal<Out, Bit>,
-    all_hit_test: BundleTest<G, V, D, T>,
-    any_hit_test: BundleTest<G, V, D, T>,
+    all_hit_test: BundleTest<G, V, D, T, CUTS>,
+    any_hit_test: BundleTest<G, V, D, T, CUTS>,
 }
 
-impl<const G: usize, const V: usize, const D: usize, const T: usize> BundleFix<G, V, D, T> {
+impl<const G: usize, const V: usize, const D: usize, const T: usize, const CUTS: usize>
+    BundleFix<G, V, D, T, CUTS>
+{
     /// The pair for `bf`, whose widths must equal the parameters.
     pub fn new(bf: &BundleFixFormat) -> Self {
         Self {
@@ -118,8 +141,8 @@ impl<const G: usize, const V: usize, const D: usize, const T: usize> BundleFix<G
     }
 }
 
-impl<const G: usize, const V: usize, const D: usize, const T: usize> Logic
-    for BundleFix<G, V, D, T>
+impl<const G: usize, const V: usize, const D: usize, const T: usize, const CUTS: usize> Logic
+    for BundleFix<G, V, D, T, CUTS>
 {
     #[hdl_gen]
     fn update(&mut self) {
@@ -210,26 +233,33 @@ impl PairInput {
 
 /// A bundle pair of any width, built for a format, so drivers need not spell the widths.
 pub trait BundleFixIo: SlabIo<Ray = PairInput, Box = BoxPair<FixBox>, Out = (bool, bool)> {
+    /// The block's cut points (those of [`crate::bundle::edge_fix::cut`]).
+    const CUTS: usize;
     /// The pair for `bf` (whose widths must match the block's).
     fn for_format(bf: &BundleFixFormat) -> Self;
+    /// The block's module name in exported Verilog, for `bf`.
+    fn module(bf: &BundleFixFormat) -> String {
+        bundle_fix_module_cuts(bf, Self::CUTS)
+    }
 }
 
-impl<const G: usize, const V: usize, const D: usize, const T: usize> BundleFixIo
-    for BundleFix<G, V, D, T>
+impl<const G: usize, const V: usize, const D: usize, const T: usize, const CUTS: usize> BundleFixIo
+    for BundleFix<G, V, D, T, CUTS>
 {
+    const CUTS: usize = CUTS;
     fn for_format(bf: &BundleFixFormat) -> Self {
         Self::new(bf)
     }
 }
 
-impl<const G: usize, const V: usize, const D: usize, const T: usize> SlabIo
-    for BundleFix<G, V, D, T>
+impl<const G: usize, const V: usize, const D: usize, const T: usize, const CUTS: usize> SlabIo
+    for BundleFix<G, V, D, T, CUTS>
 {
     type Ray = PairInput;
     type Box = BoxPair<FixBox>;
     /// `(all_hit, all_miss)`, as `golden::bundle::fix::decide_fix`.
     type Out = (bool, bool);
-    const LATENCY: usize = BUNDLE_FIX_LATENCY;
+    const LATENCY: usize = bundle_fix_latency(CUTS);
 
     fn set_clock(&mut self, high: bool) {
         self.clock.next = Clock { clk: high };
@@ -289,39 +319,39 @@ impl<const G: usize, const V: usize, const D: usize, const T: usize> SlabIo
     }
 }
 
-/// The module name of the fixed bundle pair for `bf` in exported Verilog.
+/// The module name of the default (3-clock) fixed bundle pair for `bf` in exported Verilog.
 pub fn bundle_fix_module(bf: &BundleFixFormat) -> String {
-    format!("bundle_fix_{}", bf.name())
+    bundle_fix_module_cuts(bf, BUNDLE_TEST_CUTS)
 }
 
-/// `(module, Verilog, latency)` of the fixed bundle pair over the presets b8, b12, b16 (for
-/// `crate::export::export_all`).
+/// The module name of the fixed bundle pair for `bf` with cut points `cuts`: the format's name with the
+/// suffix of the configuration in [`BUNDLE_FIX_DEPTHS`] (`_p5` for the 5-clock pair; an unlisted
+/// configuration gets `_c<cuts in hex>`).
+pub fn bundle_fix_module_cuts(bf: &BundleFixFormat, cuts: usize) -> String {
+    let suffix = match BUNDLE_FIX_DEPTHS.iter().find(|(c, _)| *c == cuts) {
+        Some((_, s)) => s.to_string(),
+        None => format!("_c{cuts:x}"),
+    };
+    format!("bundle_fix_{}{suffix}", bf.name())
+}
+
+/// `(module, Verilog, latency)` of the fixed pair `S` for `bf`.
+fn verilog_of<S: BundleFixIo>(bf: &BundleFixFormat) -> (String, String, usize) {
+    let module = S::module(bf);
+    let v = crate::export::verilog_named(&mut S::for_format(bf), &module);
+    (module, v, S::LATENCY)
+}
+
+/// `(module, Verilog, latency)` of the fixed bundle pair over the presets b8, b12, b16, at every depth
+/// of [`BUNDLE_FIX_DEPTHS`] (the 3-clock pairs first; for `crate::export::export_all`).
 pub fn bundle_fix_verilog() -> Vec<(String, String, usize)> {
     let [b8, b12, b16] = BundleFixFormat::presets();
     vec![
-        (
-            bundle_fix_module(&b8),
-            crate::export::verilog_named(
-                &mut crate::BundleFixB8::new(&b8),
-                &bundle_fix_module(&b8),
-            ),
-            BUNDLE_FIX_LATENCY,
-        ),
-        (
-            bundle_fix_module(&b12),
-            crate::export::verilog_named(
-                &mut crate::BundleFixB12::new(&b12),
-                &bundle_fix_module(&b12),
-            ),
-            BUNDLE_FIX_LATENCY,
-        ),
-        (
-            bundle_fix_module(&b16),
-            crate::export::verilog_named(
-                &mut crate::BundleFixB16::new(&b16),
-                &bundle_fix_module(&b16),
-            ),
-            BUNDLE_FIX_LATENCY,
-        ),
+        verilog_of::<crate::BundleFixB8>(&b8),
+        verilog_of::<crate::BundleFixB12>(&b12),
+        verilog_of::<crate::BundleFixB16>(&b16),
+        verilog_of::<crate::BundleFixB8P5>(&b8),
+        verilog_of::<crate::BundleFixB12P5>(&b12),
+        verilog_of::<crate::BundleFixB16P5>(&b16),
     ]
 }

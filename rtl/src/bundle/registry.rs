@@ -1,4 +1,4 @@
-//! The bundle blocks that exist: the fixed pair and the results processor over each preset grid, and the
+//! The bundle blocks that exist: the fixed pair (at 3 and 5 clocks) and the results processor over each preset grid, and the
 //! float pair in binary32, bfloat16 and binary16.
 
 use super::pair_fix::BundleFix;
@@ -11,6 +11,12 @@ pub type BundleFixB8 = BundleFix<8, 9, 9, 14>;
 pub type BundleFixB12 = BundleFix<12, 13, 13, 20>;
 /// The same over b16 (`FD = 14`).
 pub type BundleFixB16 = BundleFix<16, 17, 17, 24>;
+/// The 5-clock fixed pair over b8 (products and compares registered, `rtl::bundle::edge_fix::cut`).
+pub type BundleFixB8P5 = BundleFix<8, 9, 9, 14, { super::edge_fix::BUNDLE_TEST_CUTS_DEEP }>;
+/// The same over b12.
+pub type BundleFixB12P5 = BundleFix<12, 13, 13, 20, { super::edge_fix::BUNDLE_TEST_CUTS_DEEP }>;
+/// The same over b16.
+pub type BundleFixB16P5 = BundleFix<16, 17, 17, 24, { super::edge_fix::BUNDLE_TEST_CUTS_DEEP }>;
 
 /// The float AllHit + AnyHit bundle pair in binary32.
 pub type BundleFloatFp32 = BundleFloat<8, 23, 32>;

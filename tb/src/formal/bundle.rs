@@ -9,15 +9,17 @@
 //! e * 2^S <= t * u`. As for the multiply-round units, Yosys reduces the reference's products and the
 //! leaf's (each an exact product of the same sign-extended operands) to one multiplier, so what the
 //! solver settles is that the leaf's widths keep every product exact (a product one bit narrower is
-//! refuted), its compare and its special cases. The leaves are combinational, so a check of depth 1 over free operands is the claim
-//! for every input. The pair instantiates each leaf several times (six edge compares and three distance
+//! refuted), its compare and its special cases. A combinational leaf (the 3-clock pair's) is checked at
+//! depth 1 over free operands, which is the claim for every input; a leaf with its products registered
+//! (the 5-clock pair's, `localparam pipelined = 1'b1`) holds its operands (`anyconst`) and is checked
+//! one clock later, when its registers hold their products: again every input. The pair instantiates each leaf several times (six edge compares and three distance
 //! compares per test); instances whose bodies differ only in their names are one proof, and the row
 //! names how many instances it covers.
 //!
 //! Mutants: the left product declared one bit narrower (its top bit lost), the compare made strict, the
 //! distance compare's shift one short, and its zero-direction case dropped.
 
-use super::{module_body, mutant_of, Proof};
+use super::{module_body, mutant_of, Engine, Proof};
 
 /// `(name, width)` of every `input`/`output` port declared in `body` (`input wire  [8:0] a;`).
 fn port_widths(body: &str) -> Vec<(String, usize)> {
@@ -93,6 +95,7 @@ pub fn pair_compare_proofs(
         return Err(format!("{pair}: no edge_cmp or dist_cmp modules"));
     }
     for (module, body, n) in edges {
+        let reg = registered(&body);
         let w = port_widths(&body);
         let width = |p: &str| port_width(&w, &module, p);
         let (vb, ub) = (width("a")?, width("m")?);
@@ -102,7 +105,8 @@ pub fn pair_compare_proofs(
                 "edge compare: le = a * m <= b * n, signed, exact ({n} instances in {pair})"
             ),
             format: format!("a, b {vb} bits; m, n {ub} bits"),
-            harness: edge_harness(&module, vb, ub),
+            harness: edge_harness(&module, vb, ub, reg),
+            engine: Engine::Bmc(1 + reg as usize),
             quick,
             ..Proof::on(&module, body.clone())
         };
@@ -119,13 +123,14 @@ pub fn pair_compare_proofs(
                 &p,
                 "strict",
                 "le computed as lt: equal products not less-or-equal",
-                "le = lhs <= rhs;",
-                "le = lhs < rhs;",
+                "le = lhs_u <= rhs_u;",
+                "le = lhs_u < rhs_u;",
             ));
         }
         v.insert(v.len() - if mutants { 2 } else { 0 }, p);
     }
     for (module, body, n) in dists {
+        let reg = registered(&body);
         let w = port_widths(&body);
         let width = |p: &str| port_width(&w, &module, p);
         let (vb, tb, ub) = (width("e")?, width("t")?, width("u")?);
@@ -145,7 +150,8 @@ pub fn pair_compare_proofs(
                 "distance compare: le = u == 0 ? e <= 0 : t == +inf ? 1 : t == -inf ? 0 : e * 2^{s} <= t * u, exact ({n} instances in {pair})"
             ),
             format: format!("e {vb} bits, t {tb} bits, u {ub} bits"),
-            harness: dist_harness(&module, vb, tb, ub, s),
+            harness: dist_harness(&module, vb, tb, ub, s, reg),
+            engine: Engine::Bmc(1 + reg as usize),
             quick,
             ..Proof::on(&module, body.clone())
         };
@@ -170,17 +176,33 @@ pub fn pair_compare_proofs(
     Ok(v)
 }
 
-fn edge_harness(module: &str, vb: usize, ub: usize) -> String {
+/// The leaf registers its products (its `pipelined` localparam is set).
+fn registered(body: &str) -> bool {
+    body.lines()
+        .any(|l| l.trim() == "localparam  pipelined = 1'b1;")
+}
+
+/// `past`, high from the first clock on, and the guard of the assertions: always for a combinational
+/// leaf, from the first clock on for a registered one.
+fn checked_when(reg: bool) -> (&'static str, &'static str) {
+    (
+        "  reg past = 1'b0;\n  always @(posedge clock) past <= 1'b1;\n",
+        if reg { "if (past) " } else { "" },
+    )
+}
+
+fn edge_harness(module: &str, vb: usize, ub: usize, reg: bool) -> String {
+    let (past, when) = checked_when(reg);
     format!(
         "\
 module formal_top(input clock);
   (* anyconst *) reg signed [{v1}:0] a, b;
   (* anyconst *) reg signed [{u1}:0] m, n;
   wire le;
-  {module} dut(.a(a), .m(m), .b(b), .n(n), .le(le));
+{past}  {module} dut(.clock(clock), .a(a), .m(m), .b(b), .n(n), .le(le));
   wire signed [63:0] l = a * m;
   wire signed [63:0] r = b * n;
-  always @(*) assert(le == (l <= r));
+  always @(*) {when}assert(le == (l <= r));
 endmodule
 ",
         v1 = vb - 1,
@@ -188,7 +210,8 @@ endmodule
     )
 }
 
-fn dist_harness(module: &str, vb: usize, tb: usize, ub: usize, s: usize) -> String {
+fn dist_harness(module: &str, vb: usize, tb: usize, ub: usize, s: usize, reg: bool) -> String {
+    let (past, when) = checked_when(reg);
     format!(
         "\
 module formal_top(input clock);
@@ -196,13 +219,13 @@ module formal_top(input clock);
   (* anyconst *) reg signed [{t1}:0] t;
   (* anyconst *) reg signed [{u1}:0] u;
   wire le;
-  {module} dut(.e(e), .t(t), .u(u), .le(le));
+{past}  {module} dut(.clock(clock), .e(e), .t(t), .u(u), .le(le));
   localparam signed [63:0] PINF = (64'sd1 <<< {t1}) - 1;
   localparam signed [63:0] NINF = -(64'sd1 <<< {t1});
   wire signed [63:0] lhs = e * (64'sd1 <<< {s});
   wire signed [63:0] rhs = t * u;
   wire want = (u == 0) ? (e <= 0) : (t == PINF) ? 1'b1 : (t == NINF) ? 1'b0 : (lhs <= rhs);
-  always @(*) assert(le == want);
+  always @(*) {when}assert(le == want);
 endmodule
 ",
         v1 = vb - 1,

@@ -909,7 +909,7 @@ mod tests {
             Family::PlaneFix { cf, k, .. } => plane_fix_doc(&cf, k, false),
             Family::PlaneFrac { cf, k } => plane_fix_doc(&cf, k, true),
             Family::PlaneFloat { cf, k } => plane_float_doc(&cf, k),
-            Family::BundleFix { bf } => bundle_fix_doc(&bf),
+            Family::BundleFix { bf, .. } => bundle_fix_doc(&bf),
             Family::BundleFloat { f } => bundle_float_doc(&f),
             Family::BundleSplit { bf } => bundle_split_doc(&bf),
             _ => return None,

@@ -3,7 +3,8 @@
 //! adversarial), on-grid single rays, two-ray inputs (on-grid and off-grid quantised rays) and raw codes,
 //! with bubbles, for every preset (results, tag order, latency); a wrong model is caught; two-ray mode
 //! never calls a hitting ray a miss (exact oracle); the waveform's latency; the exported Verilog (Verilator lint,
-//! Icarus, Verilator cross-simulation against the rust-hdl simulation and the model). Each test prints
+//! Icarus, Verilator cross-simulation against the rust-hdl simulation and the model). The 5-clock pairs
+//! (`BundleFixB8P5` ..., products and compares registered) get the same checks as the 3-clock ones. Each test prints
 //! its counts and time (run with `--nocapture`).
 
 use golden::bundle::edge::ray_hits_exact;
@@ -14,7 +15,7 @@ use golden::bundle::gen::BundleGen;
 use golden::exact::slab_exact;
 use rand::{Rng, SeedableRng};
 use rand_pcg::Pcg64;
-use rtl::bundle::pair_fix::{BundleFixIo, PairInput, BUNDLE_FIX_LATENCY};
+use rtl::bundle::pair_fix::{BundleFixIo, PairInput};
 use std::time::Instant;
 use tb::bundle::pair_fix::{
     bundle_model, bundle_rtl, bundle_vectors, bundle_xsim, quantised_case, BundleVec,
@@ -71,6 +72,13 @@ fn rtl_matches_model_b12() {
 #[test]
 fn rtl_matches_model_b16() {
     rtl_matches_model::<rtl::BundleFixB16>(preset(2), 50_000, 3);
+}
+
+#[test]
+fn rtl_matches_model_5_clocks() {
+    rtl_matches_model::<rtl::BundleFixB8P5>(preset(0), 20_000, 11);
+    rtl_matches_model::<rtl::BundleFixB12P5>(preset(1), 20_000, 12);
+    rtl_matches_model::<rtl::BundleFixB16P5>(preset(2), 20_000, 13);
 }
 
 /// The equivalence check can fail: a model that judges AllHit with AnyHit's bounds (outer box, `t_hi`)
@@ -229,32 +237,41 @@ fn two_ray_mode_never_misses_a_hitting_ray() {
     run::<rtl::BundleFixB16>(preset(2), 22);
 }
 
-#[test]
-fn valid_leaves_latency_clocks_after_it_enters() {
-    let bf = preset(2);
-    let path = tb::out_dir().join("vcd").join("bundle_fix_b16_latency.vcd");
+/// The waveform of an isolated test and three back to back: `valid_out` rises exactly the pair's
+/// latency (3 clocks, 5 for the deep pair) after `valid_in`.
+fn valid_leaves_latency_clocks_after_it_enters<S: BundleFixIo>(bf: BundleFixFormat) {
+    let path = tb::out_dir()
+        .join("vcd")
+        .join(format!("{}_latency.vcd", S::module(&bf)));
     let tests: Vec<_> = bundle_vectors(bf, 5, 4, false).collect();
     let mut stream = vec![tests[0]];
     stream.extend(std::iter::repeat_n(None, 9));
     stream.extend(tests[1..].iter().cloned());
     {
-        let mut dut = bundle_rtl::<rtl::BundleFixB16>(&bf).vcd_to(&path).unwrap();
+        let mut dut = bundle_rtl::<S>(&bf).vcd_to(&path).unwrap();
         let n = run_checked(&mut dut, stream, |v| bundle_model(&bf, v))
             .unwrap_or_else(|e| panic!("{e}"));
         assert_eq!(n, 4);
     }
     let trace = read_trace(&path, &["valid_in", "valid_out"]).unwrap();
     trace
-        .check_valid_latency(2, BUNDLE_FIX_LATENCY)
+        .check_valid_latency(2, S::LATENCY)
         .unwrap_or_else(|e| panic!("{e}"));
 }
 
-fn module(bf: &BundleFixFormat) -> String {
-    rtl::bundle::pair_fix::bundle_fix_module(bf)
+#[test]
+fn valid_leaves_latency_clocks_after_it_enters_b16() {
+    valid_leaves_latency_clocks_after_it_enters::<rtl::BundleFixB16>(preset(2));
+}
+
+#[test]
+fn valid_leaves_latency_clocks_after_it_enters_5_clocks() {
+    assert_eq!(<rtl::BundleFixB12P5 as rtl::io::SlabIo>::LATENCY, 5);
+    valid_leaves_latency_clocks_after_it_enters::<rtl::BundleFixB12P5>(preset(1));
 }
 
 fn export<S: BundleFixIo>(bf: &BundleFixFormat) -> (String, std::path::PathBuf) {
-    let name = module(bf);
+    let name = S::module(bf);
     let v = rtl::export::verilog_named(&mut S::for_format(bf), &name);
     let path = tb::verilog_tools::write(&v, &name);
     (v, path)
@@ -266,6 +283,9 @@ fn exported_verilog_is_lint_clean_and_accepted_by_icarus() {
         export::<rtl::BundleFixB8>(&preset(0)).1,
         export::<rtl::BundleFixB12>(&preset(1)).1,
         export::<rtl::BundleFixB16>(&preset(2)).1,
+        export::<rtl::BundleFixB8P5>(&preset(0)).1,
+        export::<rtl::BundleFixB12P5>(&preset(1)).1,
+        export::<rtl::BundleFixB16P5>(&preset(2)).1,
     ] {
         tb::verilog_tools::lint(&path).unwrap_or_else(|e| panic!("{e}"));
         tb::verilog_tools::icarus(&path).unwrap_or_else(|e| panic!("{e}"));
@@ -275,7 +295,7 @@ fn exported_verilog_is_lint_clean_and_accepted_by_icarus() {
 fn cross_simulate<S: BundleFixIo>(bf: BundleFixFormat, n: u64, lockstep: u64, seed: u64) {
     let start = Instant::now();
     let (v, _) = export::<S>(&bf);
-    let h = tb::verilator::build(&v, &module(&bf), &tb::out_dir().join("verilator"))
+    let h = tb::verilator::build(&v, &S::module(&bf), &tb::out_dir().join("verilator"))
         .unwrap_or_else(|e| panic!("{e}"));
     let built = start.elapsed().as_secs_f64();
     let stats = bundle_xsim(
@@ -313,22 +333,27 @@ fn verilator_matches_rtl_and_model_b16() {
     cross_simulate::<rtl::BundleFixB16>(preset(2), 500_000, 50_000, 8);
 }
 
+#[test]
+fn verilator_matches_rtl_and_model_5_clocks() {
+    cross_simulate::<rtl::BundleFixB8P5>(preset(0), 200_000, 20_000, 16);
+    cross_simulate::<rtl::BundleFixB12P5>(preset(1), 200_000, 20_000, 17);
+    cross_simulate::<rtl::BundleFixB16P5>(preset(2), 200_000, 20_000, 18);
+}
+
 /// Synchronous reset of the pair (`tb::reset`): `rst` at random clocks while bundle and two-ray tests
 /// stream; a test met by a reset never leaves, every other leaves on time with the model's answer and
 /// its tag, and Verilator agrees with rust-hdl clock by clock.
-#[test]
-fn reset_clears_every_valid_bit_b12() {
-    let bf = preset(1);
-    let (v, _) = export::<rtl::BundleFixB12>(&bf);
-    let name = module(&bf);
+fn reset_clears_every_valid_bit<S: BundleFixIo>(bf: BundleFixFormat) {
+    let (v, _) = export::<S>(&bf);
+    let name = S::module(&bf);
     let h = tb::verilator::build(&v, &name, &tb::out_dir().join("verilator"))
         .unwrap_or_else(|e| panic!("{e}"));
     let tests: Vec<_> = bundle_vectors(bf, 41, 400, false).flatten().collect();
-    let clocks = tb::reset::reset_stream(&tests, BUNDLE_FIX_LATENCY, 41);
+    let clocks = tb::reset::reset_stream(&tests, S::LATENCY, 41);
     let vcd = tb::out_dir().join("vcd").join(format!("reset_{name}.vcd"));
     let word = |p: &str, t: u16, x: &Option<_>| tb::bundle::pair_fix::bundle_in_word(&bf, p, t, x);
     let s = tb::reset::reset_check(
-        || rtl::BundleFixB12::for_format(&bf),
+        || S::for_format(&bf),
         |i: &PairInput, p: &_| i.model(&bf, p),
         &clocks,
         &vcd,
@@ -336,4 +361,14 @@ fn reset_clears_every_valid_bit_b12() {
     )
     .unwrap_or_else(|e| panic!("{name}: {e}\n  waveform (rust-hdl): {}", vcd.display()));
     s.both_sides().unwrap_or_else(|e| panic!("{name}: {e}"));
+}
+
+#[test]
+fn reset_clears_every_valid_bit_b12() {
+    reset_clears_every_valid_bit::<rtl::BundleFixB12>(preset(1));
+}
+
+#[test]
+fn reset_clears_every_valid_bit_b12_5_clocks() {
+    reset_clears_every_valid_bit::<rtl::BundleFixB12P5>(preset(1));
 }
