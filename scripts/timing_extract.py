@@ -7,7 +7,8 @@ From DIR (the module's folder under <out>/timing):
   r.json   nextpnr's --report: post-route Fmax per clock and the critical paths;
   pnr.log  nextpnr's log: the last "Max frequency for clock" line, checked against r.json, and
            "Total LUT4s" (the whole design's, carries included).
-Counts are of the core module alone: LUT4, CCU2C (carry pairs), TRELLIS_FF, MULT18X18D; the
+Counts are of the core module alone: on ECP5 LUT4, CCU2C (carry pairs), TRELLIS_FF, MULT18X18D; on
+iCE40 (a DEVICE starting with iCE40) SB_LUT4, SB_CARRY, the SB_DFF* flip-flops, SB_MAC16; the
 wrapper's cells (one flip-flop per core input and output bit, about one LUT4 per output bit) are
 counted separately and checked against the bits the wrapper was written with.
 The critical path is the clock-to-clock one; its start and end cells are named by the register they
@@ -19,6 +20,7 @@ source line in core.v; `wrap_in:<port>` / `wrap_out:<port>` for the wrapper's sh
 flip-flop at a core input or output; `<cell type>:<name>` for a cell other than a flip-flop.
 
 Usage: scripts/timing_extract.py DIR MODULE LATENCY DEVICE SEED IN_BITS OUT_BITS SYNTH_S PNR_S
+  (or --header DEVICE / --md-header DEVICE: print the CSV / markdown table header for DEVICE's family)
   Writes DIR.row (the CSV row of timing.csv) and DIR.md (the markdown row of timing.md); prints a
   one-line summary on stdout. Exits 1 with a message on stderr when a result is missing.
 """
@@ -30,7 +32,35 @@ import sys
 
 # Net and cell names that Yosys's autoname makes from cell types: the suffix from the first type on.
 AUTONAME = re.compile(r"_(TRELLIS_FF|TRELLIS_COMB|LUT4|CCU2C|PFUMX|L6MUX21|MULT18X18D|ALU54B|DP16KD|"
-                      r"TRELLIS_DPR16X4|DPR16X4C)_.*$")
+                      r"TRELLIS_DPR16X4|DPR16X4C|SB_LUT4|SB_CARRY|SB_DFF[A-Z]*|SB_MAC16|SB_RAM40_4K)_.*$")
+
+
+class Cells:
+    """The cell types of a family: (LUT, carry, DSP, the LUT total's log pattern) and what a
+    flip-flop is; the CSV and markdown headers name them."""
+
+    def __init__(self, device):
+        self.ice40 = device.startswith("iCE40")
+        if self.ice40:
+            self.lut, self.carry, self.dsp = "SB_LUT4", "SB_CARRY", "SB_MAC16"
+            self.total = r"ICESTORM_LC:\s+(\d+)/"
+        else:
+            self.lut, self.carry, self.dsp = "LUT4", "CCU2C", "MULT18X18D"
+            self.total = r"Total LUT4s:\s+(\d+)/"
+
+    def is_ff(self, kind):
+        return kind.startswith("SB_DFF") if self.ice40 else kind == "TRELLIS_FF"
+
+    def csv_header(self):
+        return "module,latency,device,lut4,ff,{},fmax_mhz,crit_from,crit_to,seed".format(
+            "mac16" if self.ice40 else "mult18")
+
+    def md_header(self):
+        total = "LC all (nextpnr)" if self.ice40 else "LUT4 all (nextpnr)"
+        cols = ["module", "latency (clocks)", "LUT4", self.carry, "FF", self.dsp, "Fmax (MHz)",
+                "critical path from", "to", "path ns (routing)", "wrapper FF in+out / LUT4", total,
+                "other core cells", "synth s", "P&R s"]
+        return "| " + " | ".join(cols) + " |\n|" + "---|" * len(cols)
 
 
 class Source:
@@ -95,7 +125,8 @@ def load(path):
 class Netlist:
     """The wrapper and core modules of a Yosys JSON netlist, with bit -> net name lookups."""
 
-    def __init__(self, path, module):
+    def __init__(self, path, module, cells):
+        self.cells = cells
         mods = load(path)["modules"]
         self.top_name = f"wrap_{module}"
         if self.top_name not in mods:
@@ -146,7 +177,7 @@ class Netlist:
         if cell is None:
             return AUTONAME.sub("", bare)
         conns = cell["connections"]
-        if cell["type"] == "TRELLIS_FF":
+        if self.cells.is_ff(cell["type"]):
             n = self.net_name(mod, conns["Q"][0])
             if mod is self.core:
                 # Flattening keeps one name per net, often a child's input port (`mul_exit_0.a`),
@@ -164,14 +195,22 @@ class Netlist:
     def count(self, mod, kind):
         return sum(1 for c in mod["cells"].values() if c["type"] == kind)
 
+    def count_ff(self, mod):
+        return sum(1 for c in mod["cells"].values() if self.cells.is_ff(c["type"]))
+
 
 def main():
+    if len(sys.argv) == 3 and sys.argv[1] in ("--header", "--md-header"):
+        cells = Cells(sys.argv[2])
+        print(cells.csv_header() if sys.argv[1] == "--header" else cells.md_header())
+        return
     if len(sys.argv) != 10:
         print(__doc__.split("Usage: ")[1].split("\n")[0], file=sys.stderr)
         sys.exit(2)
     d, module, latency, device, seed, in_bits, out_bits, synth_s, pnr_s = sys.argv[1:]
     in_bits, out_bits = int(in_bits), int(out_bits)
-    net = Netlist(os.path.join(d, "x.json"), module)
+    cells = Cells(device)
+    net = Netlist(os.path.join(d, "x.json"), module, cells)
     report = load(os.path.join(d, "r.json"))
 
     # Post-route Fmax: the one clock (driven by clk), from the report; the log's last line agrees.
@@ -196,15 +235,17 @@ def main():
     routing = sum(s["delay"] for s in path if s["type"] == "routing")
 
     core, top = net.core, net.top
-    lut4, ccu2 = net.count(core, "LUT4"), net.count(core, "CCU2C")
-    ff, mult = net.count(core, "TRELLIS_FF"), net.count(core, "MULT18X18D")
-    wrap_ff, wrap_lut = net.count(top, "TRELLIS_FF"), net.count(top, "LUT4")
+    lut4, ccu2 = net.count(core, cells.lut), net.count(core, cells.carry)
+    ff, mult = net.count_ff(core), net.count(core, cells.dsp)
+    wrap_ff, wrap_lut = net.count_ff(top), net.count(top, cells.lut)
     if wrap_ff != in_bits + out_bits:
         fail(f"{d}/x.json: the wrapper has {wrap_ff} flip-flops, expected {in_bits} + {out_bits}")
     other = collections.Counter(c["type"] for c in core["cells"].values()
-                                if c["type"] not in ("LUT4", "CCU2C", "TRELLIS_FF", "MULT18X18D", "$scopeinfo"))
-    # nextpnr's LUT4 total for the whole design: logic LUTs (core and wrapper) and two per CCU2C.
-    luts = re.findall(r"Total LUT4s:\s+(\d+)/", log)
+                                if c["type"] not in (cells.lut, cells.carry, cells.dsp, "$scopeinfo")
+                                and not cells.is_ff(c["type"]))
+    # nextpnr's total for the whole design: on ECP5 logic LUTs (core and wrapper) and two per CCU2C;
+    # on iCE40 the logic cells.
+    luts = re.findall(cells.total, log)
     all_lut4 = luts[-1] if luts else ""
 
     row = [module, latency, device, lut4, ff, mult, f"{fmax:.1f}", crit_from, crit_to, seed]
@@ -216,7 +257,7 @@ def main():
           f"{in_bits}+{out_bits} / {wrap_lut}", all_lut4, others, synth_s, pnr_s]
     with open(d + ".md", "w", encoding="utf-8") as f:
         f.write("| " + " | ".join(str(x) for x in md) + " |\n")
-    print(f"{fmax:.1f} MHz ({crit_from} -> {crit_to}), {lut4} LUT4, {ff} FF, {mult} MULT18X18D")
+    print(f"{fmax:.1f} MHz ({crit_from} -> {crit_to}), {lut4} LUT4, {ff} FF, {mult} {cells.dsp}")
 
 
 if __name__ == "__main__":
