@@ -106,9 +106,6 @@ class Source:
         return None
 
 
-CSV_HEADER = "module,latency,device,lut4,ff,mult18,fmax_mhz,crit_from,crit_to,seed"
-
-
 def fail(msg):
     print(f"timing_extract: {msg}", file=sys.stderr)
     sys.exit(1)

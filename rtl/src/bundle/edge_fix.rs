@@ -1,7 +1,8 @@
 //! `BundleTest`: one of the pair of fixed-point bundle testers, AllHit or AnyHit (a constructor
 //! argument: the two share this structure and differ only in which bounds they take), fully pipelined
-//! (one test per clock), [`bundle_test_latency`]`(CUTS)` clocks of latency (3, or 5 with every cut point). The AllHit tester can be switched to
-//! AnyHit bounds test by test (`any_mode`): in two-ray mode the pair runs AnyHit on both testers.
+//! (one test per clock), [`bundle_test_latency`]`(CUTS)` clocks of latency (3, or 5 with every cut
+//! point). The AllHit tester can be switched to AnyHit bounds test by test (`any_mode`): in two-ray
+//! mode the pair runs AnyHit on both testers.
 //!
 //! Bit for bit `golden::bundle::edge::conditions_hold` in `golden::bundle::fix::FixArith` with `t_min = 0`:
 //! [`BundleTest::all_hit`] computes `golden::bundle::fix::all_hit_fix` on the inner box and `t_lo`
@@ -258,9 +259,7 @@ impl<const G: usize, const V: usize, const D: usize, const T: usize, const CUTS:
             valid_q2: Default::default(),
             tag_q2: Default::default(),
             edge_cmp: std::array::from_fn(|_| EdgeLe::new(p)),
-            dist_cmp: std::array::from_fn(|_| {
-                DistLe::with_register(bf.dist_shift() as usize, p)
-            }),
+            dist_cmp: std::array::from_fn(|_| DistLe::with_register(bf.dist_shift() as usize, p)),
             reg_p: Constant::new(p),
             ok_qp: Cut::new(p),
             valid_qp: Cut::new(p),

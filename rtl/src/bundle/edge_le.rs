@@ -115,10 +115,16 @@ pub(crate) fn sext_wire(dst: &str, src: &str, w: usize, to: usize) -> String {
 /// simulation's local) that takes `x` zero-padded every clock, and the wire `x_u`, the register's low
 /// bits when `pipelined` and `x` itself otherwise.
 pub(crate) fn product_register(names: &[&str], p: usize) -> String {
-    let mut v = String::from("// pipelined: the products are registered (x_q) and compared a clock later.\n");
+    let mut v = String::from(
+        "// pipelined: the products are registered (x_q) and compared a clock later.\n",
+    );
     for x in names {
         v += &format!("initial {x}_q = 64'd0;\n");
-        let pad = if p < 64 { format!("{}'d0, ", 64 - p) } else { String::new() };
+        let pad = if p < 64 {
+            format!("{}'d0, ", 64 - p)
+        } else {
+            String::new()
+        };
         v += &format!("always @(posedge clock) {x}_q <= {{{pad}{x}}};\n");
         v += &format!(
             "wire signed [{pm1}:0] {x}_u = pipelined ? $signed({x}_q[{pm1}:0]) : {x};\n",
@@ -187,7 +193,12 @@ mod tests {
             let mut cases = vec![];
             for a in ends(V) {
                 for m in ends(U) {
-                    cases.push((a, m, r.gen::<u64>() & ((1 << V) - 1), r.gen::<u64>() & ((1 << U) - 1)));
+                    cases.push((
+                        a,
+                        m,
+                        r.gen::<u64>() & ((1 << V) - 1),
+                        r.gen::<u64>() & ((1 << U) - 1),
+                    ));
                 }
             }
             for _ in 0..20_000 {
@@ -204,7 +215,11 @@ mod tests {
                         EdgeLe::<V, U>::product_word(x, y),
                         EdgeLe::<V, U>::product_word(z, w),
                     );
-                    assert_eq!(words, EdgeLe::<V, U>::eval(x, y, z, w), "{x:#x} {y:#x} {z:#x} {w:#x}");
+                    assert_eq!(
+                        words,
+                        EdgeLe::<V, U>::eval(x, y, z, w),
+                        "{x:#x} {y:#x} {z:#x} {w:#x}"
+                    );
                 }
             }
         }

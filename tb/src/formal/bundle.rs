@@ -12,9 +12,9 @@
 //! refuted), its compare and its special cases. A combinational leaf (the 3-clock pair's) is checked at
 //! depth 1 over free operands, which is the claim for every input; a leaf with its products registered
 //! (the 5-clock pair's, `localparam pipelined = 1'b1`) holds its operands (`anyconst`) and is checked
-//! one clock later, when its registers hold their products: again every input. The pair instantiates each leaf several times (six edge compares and three distance
-//! compares per test); instances whose bodies differ only in their names are one proof, and the row
-//! names how many instances it covers.
+//! one clock later, when its registers hold their products: again every input. The pair instantiates
+//! each leaf several times (six edge compares and three distance compares per test); instances whose
+//! bodies differ only in their names are one proof, and the row names how many instances it covers.
 //!
 //! Mutants: the left product declared one bit narrower (its top bit lost), the compare made strict, the
 //! distance compare's shift one short, and its zero-direction case dropped.
