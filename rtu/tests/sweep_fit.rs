@@ -235,6 +235,101 @@ fn fit_meets_the_budget_and_writes_verilog() {
     std::fs::remove_dir_all(&dir).unwrap();
 }
 
+/// `rtu fit --clock`: on a made-up timing table, the pick is the narrowest format within the budget
+/// whose shallowest depth reaches the clock; untimed and too slow formats are passed over and listed;
+/// a clock nothing reaches fits nothing; the picked tester's Verilog is written.
+#[test]
+fn fit_at_a_clock_takes_the_narrowest_timed_format_and_shallowest_depth() {
+    let dir = tmp("clock");
+    let out = dir.join("out");
+    let area = dir.join("area.csv");
+    std::fs::write(&area, AREA_HEADER).unwrap();
+    let timing = dir.join("timing.csv");
+    std::fs::write(
+        &timing,
+        "module,latency,device,lut4,ff,mult18,fmax_mhz,crit_from,crit_to,seed\n\
+         slab_fix_g8_i12f8_t14f4,4,x,400,400,6,90,a,b,1\n\
+         slab_fix_g8_i12f8_t14f4_p6,6,x,450,700,6,95,a,b,1\n\
+         slab_fix_g12_i16f11_t20f6,4,x,600,500,6,120,a,b,1\n\
+         slab_float_e5m10,9,x,5000,2000,6,50,a,b,1\n\
+         slab_float_e5m10_p13,13,x,6000,3400,6,120,a,b,1\n",
+    )
+    .unwrap();
+    let run = |clock: &str| {
+        let o = rtu(&[
+            "--out",
+            out.to_str().unwrap(),
+            "fit",
+            "--scenes",
+            "mesh",
+            "--width",
+            "8",
+            "--height",
+            "6",
+            "--budget",
+            "1000",
+            "--area",
+            area.to_str().unwrap(),
+            "--timing",
+            timing.to_str().unwrap(),
+            "--clock",
+            clock,
+        ]);
+        assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+        rows(&out.join("fit").join("fit_clock.csv"))
+    };
+    for (clock, fixed, float) in [
+        (
+            "80",
+            Some("slab_fix_g8_i12f8_t14f4"),
+            Some("slab_float_e5m10_p13"),
+        ),
+        (
+            "100",
+            Some("slab_fix_g12_i16f11_t20f6"),
+            Some("slab_float_e5m10_p13"),
+        ),
+        ("200", None, None),
+    ] {
+        let r = run(clock);
+        assert_eq!(r.len(), 4 * 2, "{clock}: {r:?}");
+        for row in &r {
+            let want = if row["datapath"] == "fixed" {
+                fixed
+            } else {
+                float
+            };
+            assert_eq!(row["module"], want.unwrap_or(""), "{clock}: {row:?}");
+            let passed = &row["passed_over"];
+            // The ladder's narrowest formats have no timing row: passed over, never picked.
+            let narrowest = if row["datapath"] == "fixed" {
+                "g6_i10f6_t12f4 untimed"
+            } else {
+                "e5m3 untimed"
+            };
+            assert!(passed.contains(narrowest), "{clock}: {row:?}");
+            if let Some(m) = want {
+                assert!(out.join("fit").join(format!("{m}.v")).exists(), "{m}");
+                let x: f64 = row["extra_cycles"].parse().unwrap();
+                assert!(x <= 10.0 + 1e-9, "{row:?}");
+                let fmax: f64 = row["ecp5_fmax_mhz"].parse().unwrap();
+                assert!(fmax >= clock.parse::<f64>().unwrap(), "{row:?}");
+            }
+            // A timed format that cannot reach the clock is named with its best Fmax.
+            if row["datapath"] == "fixed" && clock != "80" {
+                assert!(passed.contains("b8 95.0 MHz"), "{clock}: {row:?}");
+            }
+        }
+    }
+    let md = std::fs::read_to_string(out.join("fit").join("fit.md")).unwrap();
+    assert!(md.contains("## At 200 MHz"), "{md}");
+    assert!(
+        md.contains("none within the budget reaches 200 MHz"),
+        "{md}"
+    );
+    std::fs::remove_dir_all(&dir).unwrap();
+}
+
 #[test]
 fn bad_options_and_scene_files_are_named_errors() {
     let dir = tmp("bad");
@@ -258,6 +353,21 @@ fn bad_options_and_scene_files_are_named_errors() {
         (vec!["fit", "--budget=-1"], "--budget -1"),
         (vec!["sweep", "--mode", "nearest"], "--mode `nearest`"),
         (vec!["fit", "--mode", "first"], "--mode `first`"),
+        (
+            vec!["fit", "--clock", "0"],
+            "--clock 0: a clock target in MHz > 0",
+        ),
+        (vec!["fit", "--clock", "nan"], "--clock NaN"),
+        (
+            vec![
+                "fit",
+                "--clock",
+                "200",
+                "--timing",
+                "/nonexistent/timing.csv",
+            ],
+            "--timing /nonexistent/timing.csv: no such file",
+        ),
         (
             vec!["sweep", "--area", "/nonexistent/area.csv"],
             "--area /nonexistent/area.csv",
