@@ -321,6 +321,9 @@ pub fn export_all(dir: &Path) -> std::io::Result<Vec<PathBuf>> {
             crate::bundle::pair_float::BUNDLE_FLOAT_LATENCY,
         )?;
     }
+    for (module, v, lat) in crate::bundle::pair_float::bundle_float_deep_verilog() {
+        write(module, v, lat)?;
+    }
     std::fs::write(dir.join("latency.csv"), latency)?;
     Ok(out)
 }
@@ -352,9 +355,10 @@ pub enum Family {
         bf: golden::bundle::fix::BundleFixFormat,
         cuts: usize,
     },
-    /// The float AllHit / AnyHit bundle pair.
+    /// The float AllHit / AnyHit bundle pair, with its cut points (`crate::fp::cuts`).
     BundleFloat {
         f: golden::format::float::FloatFormat,
+        cuts: usize,
     },
     /// The bundle results processor (jobs over several clocks, not one test a clock).
     BundleSplit {
@@ -396,8 +400,11 @@ impl Exported {
                 pick(plane_verilog())
             }
             Family::BundleFix { .. } => pick(crate::bundle::pair_fix::bundle_fix_verilog()),
-            Family::BundleFloat { f } => {
+            Family::BundleFloat { f, cuts: 0 } => {
                 crate::bundle::pair_float::bundle_float_verilog(&f).expect("instantiated")
+            }
+            Family::BundleFloat { .. } => {
+                pick(crate::bundle::pair_float::bundle_float_deep_verilog())
             }
             Family::BundleSplit { .. } => pick(crate::bundle::split::bundle_split_verilog()),
         }
@@ -502,12 +509,14 @@ pub fn catalog() -> Vec<Exported> {
             Family::BundleSplit { bf: *bf },
         );
     }
-    for f in crate::BUNDLE_FLOAT_FORMATS {
-        add(
-            crate::bundle::pair_float::bundle_float_module(&f),
-            crate::bundle::pair_float::BUNDLE_FLOAT_LATENCY,
-            Family::BundleFloat { f },
-        );
+    for (cuts, _) in crate::bundle::pair_float::BUNDLE_FLOAT_DEPTHS {
+        for f in crate::BUNDLE_FLOAT_FORMATS {
+            add(
+                crate::bundle::pair_float::bundle_float_module_cuts(&f, cuts),
+                crate::bundle::pair_float::bundle_float_latency(cuts),
+                Family::BundleFloat { f, cuts },
+            );
+        }
     }
     v
 }

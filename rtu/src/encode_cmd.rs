@@ -593,7 +593,7 @@ fn bundle_rows(b: &BundleSetup) -> Result<(Vec<Vec<u64>>, Vec<Vec<u64>>), String
                     .collect::<Result<Vec<_>, _>>()?;
                 (row, tb::bundle::pair_fix::bundle_model(&bf, &q))
             }
-            Family::BundleFloat { f } => {
+            Family::BundleFloat { f, .. } => {
                 let q = (|| {
                     Ok::<_, golden::Error>((
                         rtl::bundle::pair_float::FloatPairInput::Bundle(

@@ -1,5 +1,6 @@
 //! `BundleFloatTest`: one of the pair of float bundle testers of format `E`/`M`, fully pipelined (one test
-//! per clock), [`BUNDLE_FLOAT_TEST_LATENCY`] clocks of latency. Which bounds it takes, AllHit's or
+//! per clock), [`bundle_float_test_latency`]`(CUTS)` clocks of latency: [`BUNDLE_FLOAT_TEST_LATENCY`] (9)
+//! by default, one more per optional cut point of its units ([`crate::fp::cuts`]; 13 with all). Which bounds it takes, AllHit's or
 //! AnyHit's, is chosen per test: a constructor constant ORed with the input `any_mode`, which travels with
 //! its test through every stage that uses it. So the tester built as AllHit runs AnyHit's bounds for the
 //! tests that ask for them: in two-ray mode [`crate::bundle::pair_float::BundleFloat`] needs both testers to
@@ -15,7 +16,8 @@
 //! `lo > hi`) and gives the model's answer.
 //!
 //! # Parameters
-//! `E >= 4`, `M`, `N = 1 + E + M <= 32`: the format. The presets are in [`crate::bundle::pair_float`].
+//! `E >= 4`, `M`, `N = 1 + E + M <= 32`: the format. `CUTS`: the optional cut points of its adders and
+//! multipliers ([`crate::fp::cuts`], default none). The presets are in [`crate::bundle::pair_float`].
 //!
 //! # Inputs
 //! - `clock`; `rst` (synchronous reset: high at a clock edge, every valid bit is cleared and no test in flight leaves; data registers are not reset); `valid_in`, `tag_in` (16 bits, opaque, returned with the result);
@@ -24,7 +26,7 @@
 //!   `golden::bundle::float::FloatBundle` (`t_max` is its `t_lo` for AllHit, `t_hi` for AnyHit);
 //! - `box_lo`, `box_hi`: the box (`inner` for AllHit, `outer` for AnyHit).
 //!
-//! # Outputs (registered, [`BUNDLE_FLOAT_TEST_LATENCY`] clocks after the inputs)
+//! # Outputs (registered, [`bundle_float_test_latency`]`(CUTS)` clocks after the inputs)
 //! - `valid_out`, `tag_out`, `pass`: all fifteen conditions hold with the test's bounds.
 //!
 //! # Arithmetic: one rounding direction for every unit
@@ -46,10 +48,11 @@
 //! NaN factor gives a zero or a NaN product whatever its sign, and a NaN product becomes `-inf` before
 //! the flip (`mul_lower`), so `+inf` after it (`mul_upper`).
 //!
-//! # Stages (clock at whose end a value is registered)
+//! # Stages (clock at whose end a value is registered; the numbers are the default's, each optional cut adds
+//! a clock to its units and to the [`Wait`] lines beside them)
 //! 1. clocks 1-3: per axis two [`FpAdd`] (`A`, `B` above); the box check `lo <= hi` and the straddling
 //!    `|d|` choice `-d_lo <= d_hi` ([`FpCmp`] on the inputs); directions, `t_max`, the mode and the box
-//!    flag wait in [`Delay3`] lines.
+//!    flag wait in [`Wait`] lines as long as the adders take.
 //! 2. clock 4 (`_q4`) fold: `e_pos`, `x_pos`, `e_neg`, `x_neg` by sign flips; the sign class of
 //!    `[d_lo, d_hi]` (positive: `d_lo >= 0`, negative: `d_hi <= 0`, else straddling) and, for AnyHit, the
 //!    half rule (a straddling axis whose `x_pos` or `x_neg` is negative keeps the other fold) choose `e`,
@@ -59,29 +62,37 @@
 //! 3. clocks 5-7: fifteen [`FpMul`]: for each edge `(a, c)` the upper (AllHit) or lower (AnyHit) bound of
 //!    `e_a * u_c` and the other bound of `x_c * u_a`, the factor `u_lo` or `u_hi` chosen by the sign of
 //!    `e_a`, `x_c`; for each axis the bound of `t_max * u_a`, `u` chosen by the sign of `t_max`. The sign
-//!    checks `D` (`x >= 0`) join the box flag; `e`, the flag and the mode wait in [`Delay3`] lines.
+//!    checks `D` (`x >= 0`) join the box flag; `e`, the flag and the mode wait in [`Wait`] lines.
 //! 4. clock 8 (`_q8`): a NaN product (`inf x 0`) becomes `-inf`, then the sign flip of an upward bound;
 //!    `t * u` is `+0` when `u` is zero.
 //! 5. clock 9 (`_q9`): six edge compares `e_a u_c <= x_c u_a`, three distance compares `e_a <= t u_a`
 //!    ([`FpCmp`], reading registers only: Verilator UNOPTFLAT otherwise, see `rtl/src/slab/float.rs`), ANDed with
 //!    the flag; these registers drive the outputs.
 
-use crate::delay::Delay3;
-use crate::fp::add::{FpAdd, FP_ADD_LATENCY};
+use crate::cut::Wait;
+use crate::fp::add::{fp_add_latency, FpAdd};
 use crate::fp::cmp::FpCmp;
-use crate::fp::mul::{FpMul, FP_MUL_LATENCY};
+use crate::fp::cuts;
+use crate::fp::mul::{fp_mul_latency, FpMul};
 use crate::TAG_BITS;
 use golden::format::float::{FloatFormat, Rounding};
 use rust_hdl::prelude::*;
 
-/// Clocks from a test entering a [`BundleFloatTest`] to its result leaving (9).
-pub const BUNDLE_FLOAT_TEST_LATENCY: usize = FP_ADD_LATENCY + 1 + FP_MUL_LATENCY + 2;
+/// Clocks from a test entering a [`BundleFloatTest`] with cut points `cuts` ([`crate::fp::cuts`]) to its
+/// result leaving: the adders', the fold, the multipliers', and two.
+pub const fn bundle_float_test_latency(cuts: usize) -> usize {
+    fp_add_latency(cuts::add(cuts)) + 1 + fp_mul_latency(cuts::mul(cuts)) + 2
+}
+
+/// Clocks from a test entering the default [`BundleFloatTest`] (no optional cut) to its result leaving (9).
+pub const BUNDLE_FLOAT_TEST_LATENCY: usize = bundle_float_test_latency(0);
 
 const _: () = assert!(BUNDLE_FLOAT_TEST_LATENCY == 9);
+const _: () = assert!(bundle_float_test_latency(cuts::ALL) == 13);
 
 /// One float bundle tester; see the module documentation.
 #[derive(LogicBlock)]
-pub struct BundleFloatTest<const E: usize, const M: usize, const N: usize> {
+pub struct BundleFloatTest<const E: usize, const M: usize, const N: usize, const CUTS: usize = 0> {
     pub clock: Signal<In, Clock>,
     /// Synchronous reset: high at a clock edge clears every valid bit (data registers keep their values).
     pub rst: Signal<In, Bit>,
@@ -113,13 +124,13 @@ pub struct BundleFloatTest<const E: usize, const M: usize, const N: usize> {
     box_cmp: [FpCmp<N>; 3],
     umax_cmp: [FpCmp<N>; 3],
     empty: Signal<Local, Bit>,
-    d_lo_d: [Delay3<Bits<N>>; 3],
-    d_hi_d: [Delay3<Bits<N>>; 3],
+    d_lo_d: [Wait<Bits<N>>; 3],
+    d_hi_d: [Wait<Bits<N>>; 3],
     /// `-d_lo <= d_hi`: a straddling axis's `u_hi` is `d_hi`.
-    umax_d: [Delay3<Bit>; 3],
-    t_d: Delay3<Bits<N>>,
-    any_d: Delay3<Bit>,
-    empty_d: Delay3<Bit>,
+    umax_d: [Wait<Bit>; 3],
+    t_d: Wait<Bits<N>>,
+    any_d: Wait<Bit>,
+    empty_d: Wait<Bit>,
     // stage 2 (clock 4): fold
     flip_e3: Signal<Local, Bits<N>>,
     flip_x3: Signal<Local, Bits<N>>,
@@ -164,10 +175,10 @@ pub struct BundleFloatTest<const E: usize, const M: usize, const N: usize> {
     mul_x: [FpMul<E, M, N>; 6],
     /// `t_max * u_a`.
     mul_t: [FpMul<E, M, N>; 3],
-    e_d: [Delay3<Bits<N>>; 3],
-    mt_zero_d: [Delay3<Bit>; 3],
-    ok_d: Delay3<Bit>,
-    any_d2: Delay3<Bit>,
+    e_d: [Wait<Bits<N>>; 3],
+    mt_zero_d: [Wait<Bit>; 3],
+    ok_d: Wait<Bit>,
+    any_d2: Wait<Bit>,
     // stage 4 (clock 8): NaN products and upward bounds
     flip_e7: Signal<Local, Bits<N>>,
     flip_x7: Signal<Local, Bits<N>>,
@@ -189,7 +200,9 @@ pub struct BundleFloatTest<const E: usize, const M: usize, const N: usize> {
     unused_handshake: Signal<Local, Bit>,
 }
 
-impl<const E: usize, const M: usize, const N: usize> BundleFloatTest<E, M, N> {
+impl<const E: usize, const M: usize, const N: usize, const CUTS: usize>
+    BundleFloatTest<E, M, N, CUTS>
+{
     /// The AllHit tester (`all_hit = true`; AnyHit's bounds only when `any_mode` is high) or the AnyHit
     /// tester (always AnyHit's bounds).
     pub fn new(all_hit: bool) -> Self {
@@ -198,16 +211,28 @@ impl<const E: usize, const M: usize, const N: usize> BundleFloatTest<E, M, N> {
             N as u32 == f.width() && E >= 4,
             "BundleFloatTest<{E},{M},{N}>: need N = 1+E+M and E >= 4"
         );
+        assert!(
+            CUTS & !cuts::ALL == 0,
+            "BundleFloatTest: unknown cut bits {:#x} (known: {:#x})",
+            CUTS & !cuts::ALL,
+            cuts::ALL
+        );
+        let (ac, mc) = (cuts::add(CUTS), cuts::mul(CUTS));
+        let (la, lm) = (fp_add_latency(ac), fp_mul_latency(mc));
         let c = |v: u32| Constant::new(bits::<N>(v as u64));
         let inf = f.inf(false) as u64;
         fn cmps<const N: usize, const K: usize>(inf: u64) -> [FpCmp<N>; K] {
             std::array::from_fn(|_| FpCmp::new(inf))
         }
         fn muls<const E: usize, const M: usize, const N: usize, const K: usize>(
+            mc: usize,
         ) -> [FpMul<E, M, N>; K] {
-            std::array::from_fn(|_| FpMul::new(Rounding::Down))
+            std::array::from_fn(|_| FpMul::with_cuts(Rounding::Down, mc))
         }
-        let adders = || std::array::from_fn(|_| FpAdd::new(Rounding::Down));
+        let adders = || std::array::from_fn(|_| FpAdd::with_cuts(Rounding::Down, ac));
+        fn waits<T: Synth, const K: usize>(regs: usize) -> [Wait<T>; K] {
+            std::array::from_fn(|_| Wait::new(regs))
+        }
         Self {
             clock: Default::default(),
             rst: Default::default(),
@@ -236,12 +261,12 @@ impl<const E: usize, const M: usize, const N: usize> BundleFloatTest<E, M, N> {
             box_cmp: cmps(inf),
             umax_cmp: cmps(inf),
             empty: Default::default(),
-            d_lo_d: Default::default(),
-            d_hi_d: Default::default(),
-            umax_d: Default::default(),
-            t_d: Default::default(),
-            any_d: Default::default(),
-            empty_d: Default::default(),
+            d_lo_d: waits(la),
+            d_hi_d: waits(la),
+            umax_d: waits(la),
+            t_d: Wait::new(la),
+            any_d: Wait::new(la),
+            empty_d: Wait::new(la),
             flip_e3: Default::default(),
             flip_x3: Default::default(),
             e_pos: Default::default(),
@@ -276,13 +301,13 @@ impl<const E: usize, const M: usize, const N: usize> BundleFloatTest<E, M, N> {
             t_is_neg: Default::default(),
             mt: Default::default(),
             ok: Default::default(),
-            mul_e: muls(),
-            mul_x: muls(),
-            mul_t: muls(),
-            e_d: Default::default(),
-            mt_zero_d: Default::default(),
-            ok_d: Default::default(),
-            any_d2: Default::default(),
+            mul_e: muls(mc),
+            mul_x: muls(mc),
+            mul_t: muls(mc),
+            e_d: waits(lm),
+            mt_zero_d: waits(lm),
+            ok_d: Wait::new(lm),
+            any_d2: Wait::new(lm),
             flip_e7: Default::default(),
             flip_x7: Default::default(),
             lhs_q8: Default::default(),
@@ -313,7 +338,9 @@ impl<const E: usize, const M: usize, const N: usize> BundleFloatTest<E, M, N> {
     }
 }
 
-impl<const E: usize, const M: usize, const N: usize> Logic for BundleFloatTest<E, M, N> {
+impl<const E: usize, const M: usize, const N: usize, const CUTS: usize> Logic
+    for BundleFloatTest<E, M, N, CUTS>
+{
     #[hdl_gen]
     fn update(&mut self) {
         dff_setup!(

@@ -1,6 +1,8 @@
 //! `BundleFloat`: the pair of float bundle testers of format `E`/`M`, AllHit and AnyHit side by side
-//! ([`BundleFloatTest`] twice), fully pipelined (one test per clock), [`BUNDLE_FLOAT_LATENCY`] clocks of
-//! latency. Per clock the pair takes either one bundle, which both testers judge, or two single rays, one
+//! ([`BundleFloatTest`] twice), fully pipelined (one test per clock), [`bundle_float_latency`]`(CUTS)`
+//! clocks of latency: 9 by default, 13 for the deep configuration (`CUTS` = [`crate::fp::cuts::ALL`],
+//! every optional cut of the adders and multipliers; module names end in `_p13`). [`BUNDLE_FLOAT_DEPTHS`]
+//! lists the built ones. Per clock the pair takes either one bundle, which both testers judge, or two single rays, one
 //! per tester (the pair of testing blocks of US 11,308,683 and the "one bundle or two rays" claims of
 //! US 11,682,160); the float counterpart of [`crate::bundle::pair_fix::BundleFix`].
 //!
@@ -20,8 +22,10 @@
 //! both low means "descend for B but not A" and so on; neither answer is ever wrong for a ray that hits.
 //!
 //! # Parameters
-//! `E >= 4`, `M`, `N = 1 + E + M <= 32`; the presets are [`crate::BundleFloatFp32`],
-//! [`crate::BundleFloatBf16`], [`crate::BundleFloatFp16`].
+//! `E >= 4`, `M`, `N = 1 + E + M <= 32`; `CUTS`, the optional cut points ([`crate::fp::cuts`], default
+//! none). The presets are [`crate::BundleFloatFp32`], [`crate::BundleFloatBf16`],
+//! [`crate::BundleFloatFp16`] and at 13 clocks [`crate::BundleFloatFp32P13`], [`crate::BundleFloatBf16P13`],
+//! [`crate::BundleFloatFp16P13`].
 //!
 //! # Inputs
 //! - `clock`; `rst` (synchronous reset: high at a clock edge, every valid bit is cleared and no test in flight leaves; data registers are not reset); `valid_in`, `tag_in` (16 bits, opaque, returned with the result);
@@ -32,7 +36,7 @@
 //! - `in_lo`, `in_hi`: the inner box (AllHit in bundle mode; unused in two-ray mode); `out_lo`, `out_hi`:
 //!   the outer box (AnyHit, and both testers in two-ray mode).
 //!
-//! # Outputs (registered, [`BUNDLE_FLOAT_LATENCY`] clocks after the inputs)
+//! # Outputs (registered, [`bundle_float_latency`]`(CUTS)` clocks after the inputs)
 //! - `valid_out`, `tag_out`;
 //! - `all_hit`: every ray of the bundle hits (bundle mode); ray A may hit (two-ray mode);
 //! - `all_miss`: every ray of the bundle misses (bundle mode); ray B misses (two-ray mode).
@@ -41,7 +45,7 @@
 //! Both testers carry their own valid and tag; the outputs take the AND of the two sides' (they are
 //! equal), so that no child output is left unused.
 
-use crate::bundle::edge_float::{BundleFloatTest, BUNDLE_FLOAT_TEST_LATENCY};
+use crate::bundle::edge_float::{bundle_float_test_latency, BundleFloatTest};
 use crate::io::SlabIo;
 use crate::TAG_BITS;
 use golden::bundle::edge::BoxPair;
@@ -50,12 +54,24 @@ use golden::format::float::FloatFormat;
 use golden::slab::float::FloatBox;
 use rust_hdl::prelude::*;
 
-/// Clocks from a test entering `BundleFloat` to its result leaving.
-pub const BUNDLE_FLOAT_LATENCY: usize = BUNDLE_FLOAT_TEST_LATENCY;
+/// Clocks from a test entering a `BundleFloat` with cut points `cuts` ([`crate::fp::cuts`]) to its result
+/// leaving.
+pub const fn bundle_float_latency(cuts: usize) -> usize {
+    bundle_float_test_latency(cuts)
+}
+
+/// Clocks from a test entering the default `BundleFloat` to its result leaving.
+pub const BUNDLE_FLOAT_LATENCY: usize = bundle_float_latency(0);
+
+/// The configurations that are built (exported, tested, timed): `(cuts, name suffix)`; the module name
+/// is `bundle_float_<format><suffix>` ([`bundle_float_module_cuts`]).
+pub const BUNDLE_FLOAT_DEPTHS: [(usize, &str); 2] = [(0, ""), (crate::fp::cuts::ALL, "_p13")];
+
+const _: () = assert!(bundle_float_latency(crate::fp::cuts::ALL) == 13);
 
 /// The AllHit + AnyHit pair; see the module documentation.
 #[derive(LogicBlock)]
-pub struct BundleFloat<const E: usize, const M: usize, const N: usize> {
+pub struct BundleFloat<const E: usize, const M: usize, const N: usize, const CUTS: usize = 0> {
     pub clock: Signal<In, Clock>,
     /// Synchronous reset: high at a clock edge clears every valid bit (data registers keep their values).
     pub rst: Signal<In, Bit>,
@@ -81,11 +97,11 @@ pub struct BundleFloat<const E: usize, const M: usize, const N: usize> {
     pub tag_out: Signal<Out, Bits<TAG_BITS>>,
     pub all_hit: Signal<Out, Bit>,
     pub all_miss: Signal<Out, Bit>,
-    all_hit_test: BundleFloatTest<E, M, N>,
-    any_hit_test: BundleFloatTest<E, M, N>,
+    all_hit_test: BundleFloatTest<E, M, N, CUTS>,
+    any_hit_test: BundleFloatTest<E, M, N, CUTS>,
 }
 
-impl<const E: usize, const M: usize, const N: usize> BundleFloat<E, M, N> {
+impl<const E: usize, const M: usize, const N: usize, const CUTS: usize> BundleFloat<E, M, N, CUTS> {
     /// The pair (the format is the parameters').
     pub fn new() -> Self {
         Self {
@@ -119,13 +135,17 @@ impl<const E: usize, const M: usize, const N: usize> BundleFloat<E, M, N> {
     }
 }
 
-impl<const E: usize, const M: usize, const N: usize> Default for BundleFloat<E, M, N> {
+impl<const E: usize, const M: usize, const N: usize, const CUTS: usize> Default
+    for BundleFloat<E, M, N, CUTS>
+{
     fn default() -> Self {
         Self::new()
     }
 }
 
-impl<const E: usize, const M: usize, const N: usize> Logic for BundleFloat<E, M, N> {
+impl<const E: usize, const M: usize, const N: usize, const CUTS: usize> Logic
+    for BundleFloat<E, M, N, CUTS>
+{
     #[hdl_gen]
     fn update(&mut self) {
         self.all_hit_test.clock.next = self.clock.val();
@@ -222,13 +242,22 @@ impl FloatPairInput {
 pub trait BundleFloatIo:
     SlabIo<Ray = FloatPairInput, Box = BoxPair<FloatBox>, Out = (bool, bool)>
 {
+    /// The block's cut points ([`crate::fp::cuts`]).
+    const CUTS: usize;
     /// The format of the block.
     fn format() -> FloatFormat;
     /// The pair for `f`, which must be the block's format.
     fn for_format(f: &FloatFormat) -> Self;
+    /// The block's module name in exported Verilog.
+    fn module() -> String {
+        bundle_float_module_cuts(&Self::format(), Self::CUTS)
+    }
 }
 
-impl<const E: usize, const M: usize, const N: usize> BundleFloatIo for BundleFloat<E, M, N> {
+impl<const E: usize, const M: usize, const N: usize, const CUTS: usize> BundleFloatIo
+    for BundleFloat<E, M, N, CUTS>
+{
+    const CUTS: usize = CUTS;
     fn format() -> FloatFormat {
         FloatFormat::new(E as u32, M as u32).expect("valid format")
     }
@@ -237,19 +266,21 @@ impl<const E: usize, const M: usize, const N: usize> BundleFloatIo for BundleFlo
         assert_eq!(
             *f,
             <Self as BundleFloatIo>::format(),
-            "BundleFloat<{E},{M},{N}> is not for format {}",
+            "BundleFloat<{E},{M},{N},{CUTS}> is not for format {}",
             f.name()
         );
         Self::new()
     }
 }
 
-impl<const E: usize, const M: usize, const N: usize> SlabIo for BundleFloat<E, M, N> {
+impl<const E: usize, const M: usize, const N: usize, const CUTS: usize> SlabIo
+    for BundleFloat<E, M, N, CUTS>
+{
     type Ray = FloatPairInput;
     type Box = BoxPair<FloatBox>;
     /// `(all_hit, all_miss)`, as [`FloatPairInput::model`].
     type Out = (bool, bool);
-    const LATENCY: usize = BUNDLE_FLOAT_LATENCY;
+    const LATENCY: usize = bundle_float_latency(CUTS);
 
     fn set_clock(&mut self, high: bool) {
         self.clock.next = Clock { clk: high };
@@ -310,17 +341,43 @@ impl<const E: usize, const M: usize, const N: usize> SlabIo for BundleFloat<E, M
     }
 }
 
-/// Module name of the float bundle pair for a format, e.g. `bundle_float_e8m23`.
+/// Module name of the default (9-clock) float bundle pair for a format, e.g. `bundle_float_e8m23`.
 pub fn bundle_float_module(f: &FloatFormat) -> String {
-    format!("bundle_float_{}", f.name())
+    bundle_float_module_cuts(f, 0)
 }
 
-/// Verilog of the float bundle pair for an instantiated format.
+/// Module name of the float bundle pair for a format and cut points: the format's name with the suffix
+/// of the configuration in [`BUNDLE_FLOAT_DEPTHS`] (`_p13` for the 13-clock pair; an unlisted
+/// configuration gets `_c<cuts in hex>`).
+pub fn bundle_float_module_cuts(f: &FloatFormat, cuts: usize) -> String {
+    let suffix = match BUNDLE_FLOAT_DEPTHS.iter().find(|(c, _)| *c == cuts) {
+        Some((_, s)) => s.to_string(),
+        None => format!("_c{cuts:x}"),
+    };
+    format!("bundle_float_{}{suffix}", f.name())
+}
+
+/// Verilog of the float pair `S`, named after its format and cut points.
+pub fn bundle_float_verilog_of<S: BundleFloatIo + Block>() -> String {
+    let mut uut = Box::new(S::for_format(&S::format()));
+    crate::export::verilog_named(uut.as_mut(), &S::module())
+}
+
+/// Verilog of the default float bundle pair for an instantiated format.
 pub fn bundle_float_verilog(f: &FloatFormat) -> Result<String, String> {
-    crate::with_bundle_float!(f, P, {
-        let mut uut = Box::new(P::new());
-        crate::export::verilog_named(uut.as_mut(), &bundle_float_module(f))
-    })
+    crate::with_bundle_float!(f, P, { bundle_float_verilog_of::<P>() })
+}
+
+/// `(module, Verilog, latency)` of the 13-clock float bundle pairs over [`crate::BUNDLE_FLOAT_FORMATS`].
+pub fn bundle_float_deep_verilog() -> Vec<(String, String, usize)> {
+    fn one<S: BundleFloatIo + Block>() -> (String, String, usize) {
+        (S::module(), bundle_float_verilog_of::<S>(), S::LATENCY)
+    }
+    vec![
+        one::<crate::BundleFloatFp32P13>(),
+        one::<crate::BundleFloatBf16P13>(),
+        one::<crate::BundleFloatFp16P13>(),
+    ]
 }
 
 /// Runs `$body` with `$t` bound to the `BundleFloat` type of a float format, or returns an error for a

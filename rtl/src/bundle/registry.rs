@@ -1,5 +1,5 @@
 //! The bundle blocks that exist: the fixed pair (at 3 and 5 clocks) and the results processor over each preset grid, and the
-//! float pair in binary32, bfloat16 and binary16.
+//! float pair (at 9 and 13 clocks) in binary32, bfloat16 and binary16.
 
 use super::pair_fix::BundleFix;
 use super::pair_float::BundleFloat;
@@ -24,6 +24,13 @@ pub type BundleFloatFp32 = BundleFloat<8, 23, 32>;
 pub type BundleFloatBf16 = BundleFloat<8, 7, 16>;
 /// The same in binary16.
 pub type BundleFloatFp16 = BundleFloat<5, 10, 16>;
+/// The 13-clock float pair in binary32 (every optional cut of its adders and multipliers,
+/// [`crate::fp::cuts::ALL`]).
+pub type BundleFloatFp32P13 = BundleFloat<8, 23, 32, { crate::fp::cuts::ALL }>;
+/// The same in bfloat16.
+pub type BundleFloatBf16P13 = BundleFloat<8, 7, 16, { crate::fp::cuts::ALL }>;
+/// The same in binary16.
+pub type BundleFloatFp16P13 = BundleFloat<5, 10, 16, { crate::fp::cuts::ALL }>;
 
 /// The float formats with an instantiated float bundle pair (`with_bundle_float!`).
 pub const BUNDLE_FLOAT_FORMATS: [golden::format::float::FloatFormat; 3] = [

@@ -7,10 +7,12 @@
 //! | [`round::FpRound`] | `fp/round.rs` | the shared rounding of a normalised significand |
 //! | [`sig_mul::SigMul`] | `fp/sig_mul.rs` | significand product and its leading one (hand-written Verilog) |
 //! | [`cmp::FpCmp`] | `fp/cmp.rs` | compare |
+//! | [`cuts`] | `fp/cuts.rs` | the optional cut points of a datapath of adders and multipliers |
 //! | [`min_max`] | `fp/min_max.rs` | minimum and maximum |
 
 pub mod add;
 pub mod cmp;
+pub mod cuts;
 pub mod min_max;
 pub mod mul;
 pub mod round;

@@ -35,45 +35,9 @@ use golden::slab::float::{FloatBox, FloatRay, SlabFloatOut};
 use rust_hdl::prelude::*;
 
 /// The optional cut points of the float slab tester: one bit each of its `CUTS` parameter, each the cut of
-/// the same name in all six of its adders or multipliers.
-pub mod cut {
-    /// [`crate::fp::add::cut::ALIGN`] in the six adders.
-    pub const ADD_ALIGN: usize = 1 << 0;
-    /// [`crate::fp::add::cut::NORM`] in the six adders.
-    pub const ADD_NORM: usize = 1 << 1;
-    /// [`crate::fp::mul::cut::RAW`] in the six multipliers.
-    pub const MUL_RAW: usize = 1 << 2;
-    /// [`crate::fp::mul::cut::PRODUCT`] in the six multipliers.
-    pub const MUL_PRODUCT: usize = 1 << 3;
-    /// Every optional cut.
-    pub const ALL: usize = ADD_ALIGN | ADD_NORM | MUL_RAW | MUL_PRODUCT;
-
-    /// The adders' cuts of a configuration.
-    pub const fn add(cuts: usize) -> usize {
-        (if cuts & ADD_ALIGN != 0 {
-            crate::fp::add::cut::ALIGN
-        } else {
-            0
-        }) | (if cuts & ADD_NORM != 0 {
-            crate::fp::add::cut::NORM
-        } else {
-            0
-        })
-    }
-
-    /// The multipliers' cuts of a configuration.
-    pub const fn mul(cuts: usize) -> usize {
-        (if cuts & MUL_RAW != 0 {
-            crate::fp::mul::cut::RAW
-        } else {
-            0
-        }) | (if cuts & MUL_PRODUCT != 0 {
-            crate::fp::mul::cut::PRODUCT
-        } else {
-            0
-        })
-    }
-}
+/// the same name in all six of its adders or multipliers (the float datapaths share them:
+/// [`crate::fp::cuts`]).
+pub use crate::fp::cuts as cut;
 
 /// Clocks from a test entering a `SlabFloat` with cut points `cuts` to its result leaving.
 pub const fn slab_float_latency(cuts: usize) -> usize {

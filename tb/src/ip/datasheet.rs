@@ -235,7 +235,7 @@ pub fn family_doc(e: &Exported) -> FamilyDoc {
         Family::PlaneFrac { cf, k } => fd::plane_fix_doc(&cf, k, true),
         Family::PlaneFloat { cf, k } => fd::plane_float_doc(&cf, k),
         Family::BundleFix { bf, .. } => fd::bundle_fix_doc(&bf),
-        Family::BundleFloat { f } => fd::bundle_float_doc(&f),
+        Family::BundleFloat { f, .. } => fd::bundle_float_doc(&f),
         Family::BundleSplit { bf } => fd::bundle_split_doc(&bf),
     }
 }

@@ -910,7 +910,7 @@ mod tests {
             Family::PlaneFrac { cf, k } => plane_fix_doc(&cf, k, true),
             Family::PlaneFloat { cf, k } => plane_float_doc(&cf, k),
             Family::BundleFix { bf, .. } => bundle_fix_doc(&bf),
-            Family::BundleFloat { f } => bundle_float_doc(&f),
+            Family::BundleFloat { f, .. } => bundle_float_doc(&f),
             Family::BundleSplit { bf } => bundle_split_doc(&bf),
             _ => return None,
         })
@@ -1054,7 +1054,7 @@ mod tests {
                         assert_eq!(width("r_d_hi_2"), param("D"), "{}", e.module);
                     }
                 }
-                Family::BundleFloat { f } => {
+                Family::BundleFloat { f, .. } => {
                     assert_eq!(width("d_lo_0"), param("W"), "{}", e.module);
                     assert_eq!(width("r_t"), Some(f.width() as usize));
                 }

@@ -5,16 +5,15 @@
 //! bfloat16 and binary32 (results, tag order, latency); wrong models are caught, among them the fixed
 //! pair's two-ray rule (ray A under AllHit's bounds); single rays get one sound answer from both testers;
 //! the waveform's latency; the exported Verilog (Verilator lint, Icarus, Verilator cross-simulation
-//! against the rust-hdl simulation and the model). Each test prints its counts and time (run with
-//! `--nocapture`).
+//! against the rust-hdl simulation and the model). The 13-clock pairs (`BundleFloatFp16P13` ..., every
+//! optional cut of the adders and multipliers) get the same checks. Each test prints its counts and
+//! time (run with `--nocapture`).
 
 use golden::bundle::edge::ray_hits_exact;
 use golden::bundle::float::{all_hit_float, all_miss_float, FloatBundle};
 use golden::bundle::gen::{BundleGen, BundleKind};
 use golden::format::float::FloatFormat;
-use rtl::bundle::pair_float::{
-    bundle_float_module, bundle_float_verilog, BundleFloatIo, FloatPairInput, BUNDLE_FLOAT_LATENCY,
-};
+use rtl::bundle::pair_float::{bundle_float_verilog_of, BundleFloatIo, FloatPairInput};
 use std::time::Instant;
 use tb::bundle::pair_float::{
     bundle_float_model, bundle_float_rtl, bundle_float_vectors, bundle_float_xsim, quantised,
@@ -71,6 +70,13 @@ fn rtl_matches_model_bf16() {
 #[test]
 fn rtl_matches_model_fp32() {
     rtl_matches_model::<rtl::BundleFloatFp32>(20_000, 3);
+}
+
+#[test]
+fn rtl_matches_model_13_clocks() {
+    rtl_matches_model::<rtl::BundleFloatFp16P13>(10_000, 11);
+    rtl_matches_model::<rtl::BundleFloatBf16P13>(10_000, 12);
+    rtl_matches_model::<rtl::BundleFloatFp32P13>(10_000, 13);
 }
 
 /// The equivalence check can fail: a model that judges AllHit with AnyHit's bounds (outer box, `t_hi`)
@@ -171,42 +177,59 @@ fn one_ray_on_both_testers_gets_one_sound_answer() {
     })
 }
 
-#[test]
-fn valid_leaves_latency_clocks_after_it_enters() {
+/// The waveform of an isolated test and three back to back: `valid_out` rises exactly the pair's
+/// latency (9 clocks, 13 for the deep pair) after `valid_in`.
+fn valid_leaves_latency_clocks_after_it_enters<S: BundleFloatIo + 'static>() {
     with_big_stack(|| {
-        let f = FloatFormat::FP16;
+        let f = S::format();
         let path = tb::out_dir()
             .join("vcd")
-            .join("bundle_float_e5m10_latency.vcd");
+            .join(format!("{}_latency.vcd", S::module()));
         let tests: Vec<_> = bundle_float_vectors(f, 5, 4, false).collect();
         let mut stream = vec![tests[0]];
-        stream.extend(std::iter::repeat_n(None, 12));
+        stream.extend(std::iter::repeat_n(None, 16));
         stream.extend(tests[1..].iter().cloned());
         {
-            let mut dut = bundle_float_rtl::<rtl::BundleFloatFp16>()
-                .vcd_to(&path)
-                .unwrap();
+            let mut dut = bundle_float_rtl::<S>().vcd_to(&path).unwrap();
             let n = run_checked(&mut dut, stream, |v| bundle_float_model(&f, v))
                 .unwrap_or_else(|e| panic!("{e}"));
             assert_eq!(n, 4);
         }
         let trace = read_trace(&path, &["valid_in", "valid_out"]).unwrap();
         trace
-            .check_valid_latency(2, BUNDLE_FLOAT_LATENCY)
+            .check_valid_latency(2, S::LATENCY)
             .unwrap_or_else(|e| panic!("{e}"));
     })
 }
 
-fn export(f: FloatFormat) -> (String, std::path::PathBuf) {
-    let v = with_big_stack(move || bundle_float_verilog(&f).unwrap());
-    let path = tb::verilog_tools::write(&v, &bundle_float_module(&f));
+#[test]
+fn valid_leaves_latency_clocks_after_it_enters_fp16() {
+    assert_eq!(<rtl::BundleFloatFp16 as rtl::SlabIo>::LATENCY, 9);
+    valid_leaves_latency_clocks_after_it_enters::<rtl::BundleFloatFp16>();
+}
+
+#[test]
+fn valid_leaves_latency_clocks_after_it_enters_13_clocks() {
+    assert_eq!(<rtl::BundleFloatFp16P13 as rtl::SlabIo>::LATENCY, 13);
+    valid_leaves_latency_clocks_after_it_enters::<rtl::BundleFloatFp16P13>();
+}
+
+fn export<S: BundleFloatIo + 'static>() -> (String, std::path::PathBuf) {
+    let v = with_big_stack(bundle_float_verilog_of::<S>);
+    let path = tb::verilog_tools::write(&v, &S::module());
     (v, path)
 }
 
 #[test]
 fn exported_verilog_is_lint_clean_and_accepted_by_icarus() {
-    for f in rtl::BUNDLE_FLOAT_FORMATS {
-        let path = export(f).1;
+    for path in [
+        export::<rtl::BundleFloatFp16>().1,
+        export::<rtl::BundleFloatBf16>().1,
+        export::<rtl::BundleFloatFp32>().1,
+        export::<rtl::BundleFloatFp16P13>().1,
+        export::<rtl::BundleFloatBf16P13>().1,
+        export::<rtl::BundleFloatFp32P13>().1,
+    ] {
         tb::verilog_tools::lint(&path).unwrap_or_else(|e| panic!("{e}"));
         tb::verilog_tools::icarus(&path).unwrap_or_else(|e| panic!("{e}"));
     }
@@ -218,13 +241,9 @@ const LOCKSTEP: u64 = 3_000;
 fn cross_simulate<S: BundleFloatIo + 'static>(n: u64, seed: u64) {
     let f = S::format();
     let start = Instant::now();
-    let (v, _) = export(f);
-    let h = tb::verilator::build(
-        &v,
-        &bundle_float_module(&f),
-        &tb::out_dir().join("verilator"),
-    )
-    .unwrap_or_else(|e| panic!("{e}"));
+    let (v, _) = export::<S>();
+    let h = tb::verilator::build(&v, &S::module(), &tb::out_dir().join("verilator"))
+        .unwrap_or_else(|e| panic!("{e}"));
     let built = start.elapsed().as_secs_f64();
     let stats = with_big_stack(move || {
         bundle_float_xsim(
@@ -262,13 +281,18 @@ fn verilator_matches_rtl_and_model_fp32() {
     cross_simulate::<rtl::BundleFloatFp32>(200_000, 8);
 }
 
-/// Synchronous reset of the float pair (`tb::reset`), binary16: as for the fixed pair.
 #[test]
-fn reset_clears_every_valid_bit_fp16() {
-    type S = rtl::BundleFloatFp16;
+fn verilator_matches_rtl_and_model_13_clocks() {
+    cross_simulate::<rtl::BundleFloatFp16P13>(200_000, 16);
+    cross_simulate::<rtl::BundleFloatBf16P13>(200_000, 17);
+    cross_simulate::<rtl::BundleFloatFp32P13>(200_000, 18);
+}
+
+/// Synchronous reset of the float pair (`tb::reset`): as for the fixed pair.
+fn reset_clears_every_valid_bit<S: BundleFloatIo + 'static>() {
     let f = S::format();
-    let (v, _) = export(f);
-    let name = bundle_float_module(&f);
+    let (v, _) = export::<S>();
+    let name = S::module();
     let h = tb::verilator::build(&v, &name, &tb::out_dir().join("verilator"))
         .unwrap_or_else(|e| panic!("{e}"));
     let s = with_big_stack(move || {
@@ -288,4 +312,14 @@ fn reset_clears_every_valid_bit_fp16() {
     })
     .unwrap_or_else(|e| panic!("{e}"));
     s.both_sides().unwrap_or_else(|e| panic!("{e}"));
+}
+
+#[test]
+fn reset_clears_every_valid_bit_fp16() {
+    reset_clears_every_valid_bit::<rtl::BundleFloatFp16>();
+}
+
+#[test]
+fn reset_clears_every_valid_bit_fp16_13_clocks() {
+    reset_clears_every_valid_bit::<rtl::BundleFloatFp16P13>();
 }
