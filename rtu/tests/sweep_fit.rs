@@ -160,6 +160,27 @@ fn sweep_measures_every_configuration_and_marks_the_front() {
     std::fs::remove_dir_all(&dir).unwrap();
 }
 
+/// `rtu fit` on the mesh at 8x6 primary rays with the area table `area` and the options `extra`; it
+/// must succeed.
+fn fit_mesh(out: &Path, area: &Path, extra: &[&str]) {
+    let mut args = vec![
+        "--out",
+        out.to_str().unwrap(),
+        "fit",
+        "--scenes",
+        "mesh",
+        "--width",
+        "8",
+        "--height",
+        "6",
+        "--area",
+        area.to_str().unwrap(),
+    ];
+    args.extend(extra);
+    let o = rtu(&args);
+    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+}
+
 #[test]
 fn fit_meets_the_budget_and_writes_verilog() {
     let dir = tmp("fit");
@@ -167,22 +188,7 @@ fn fit_meets_the_budget_and_writes_verilog() {
     let area = dir.join("area.csv");
     std::fs::write(&area, AREA_HEADER).unwrap();
     let run = |budget: &str| {
-        let o = rtu(&[
-            "--out",
-            out.to_str().unwrap(),
-            "fit",
-            "--scenes",
-            "mesh",
-            "--width",
-            "8",
-            "--height",
-            "6",
-            "--budget",
-            budget,
-            "--area",
-            area.to_str().unwrap(),
-        ]);
-        assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+        fit_mesh(&out, &area, &["--budget", budget]);
         rows(&out.join("fit").join("fit.csv"))
     };
     // Any budget: each fitted row is within it; a huge one takes the narrowest ladder formats.
@@ -256,26 +262,12 @@ fn fit_at_a_clock_takes_the_narrowest_timed_format_and_shallowest_depth() {
     )
     .unwrap();
     let run = |clock: &str| {
-        let o = rtu(&[
-            "--out",
-            out.to_str().unwrap(),
-            "fit",
-            "--scenes",
-            "mesh",
-            "--width",
-            "8",
-            "--height",
-            "6",
-            "--budget",
-            "1000",
-            "--area",
-            area.to_str().unwrap(),
-            "--timing",
-            timing.to_str().unwrap(),
-            "--clock",
-            clock,
-        ]);
-        assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+        let t = timing.to_str().unwrap();
+        fit_mesh(
+            &out,
+            &area,
+            &["--budget", "1000", "--timing", t, "--clock", clock],
+        );
         rows(&out.join("fit").join("fit_clock.csv"))
     };
     for (clock, fixed, float) in [
