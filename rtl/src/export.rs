@@ -149,13 +149,7 @@ pub fn slab_fix_module(fmt: &FixFormat) -> String {
 /// suffix of the configuration in [`crate::slab::fix::SLAB_FIX_DEPTHS`] (`_p6` for the 6-clock
 /// tester), or `_c` and the cut mask in hex for another.
 pub fn slab_fix_module_cuts(fmt: &FixFormat, cuts: usize) -> String {
-    let suffix = match crate::slab::fix::SLAB_FIX_DEPTHS
-        .iter()
-        .find(|(c, _)| *c == cuts)
-    {
-        Some((_, s)) => s.to_string(),
-        None => format!("_c{cuts:02x}"),
-    };
+    let suffix = crate::cut::depth_suffix(&crate::slab::fix::SLAB_FIX_DEPTHS, cuts);
     format!("slab_fix_{}{suffix}", fmt.name())
 }
 
@@ -195,13 +189,7 @@ pub fn slab_float_module(f: &golden::format::float::FloatFormat) -> String {
 /// suffix of the configuration in [`crate::slab::float::SLAB_FLOAT_DEPTHS`] (`_p13` for the 13-clock
 /// tester), or `_c` and the cut mask in hex for another.
 pub fn slab_float_module_cuts(f: &golden::format::float::FloatFormat, cuts: usize) -> String {
-    let suffix = match crate::slab::float::SLAB_FLOAT_DEPTHS
-        .iter()
-        .find(|(c, _)| *c == cuts)
-    {
-        Some((_, s)) => s.to_string(),
-        None => format!("_c{cuts:02x}"),
-    };
+    let suffix = crate::cut::depth_suffix(&crate::slab::float::SLAB_FLOAT_DEPTHS, cuts);
     format!("slab_float_{}{suffix}", f.name())
 }
 

@@ -178,32 +178,23 @@ fn first_fit(
     Ok((None, passed))
 }
 
-/// The cut points of a format's default slab tester.
+/// The cut points of a format's default slab tester (the first of its depths).
 fn default_cuts(f: &Format) -> usize {
-    match f {
-        Format::Fix(_) => rtl::slab::fix::SLAB_FIX_CUTS,
-        Format::Float(_) => 0,
-    }
+    depths(f)[0].0
 }
 
-/// The pipeline depths of a datapath's slab tester, shallowest first (cut points).
-fn depths(f: &Format) -> Vec<usize> {
+/// The built depths of a datapath's slab tester, shallowest first: `(cut points, module-name suffix)`.
+fn depths(f: &Format) -> &'static [(usize, &'static str)] {
     match f {
-        Format::Fix(_) => rtl::slab::fix::SLAB_FIX_DEPTHS
-            .iter()
-            .map(|d| d.0)
-            .collect(),
-        Format::Float(_) => rtl::slab::float::SLAB_FLOAT_DEPTHS
-            .iter()
-            .map(|d| d.0)
-            .collect(),
+        Format::Fix(_) => &rtl::slab::fix::SLAB_FIX_DEPTHS,
+        Format::Float(_) => &rtl::slab::float::SLAB_FLOAT_DEPTHS,
     }
 }
 
 /// The shallowest depth of `f`'s tester whose timing row reaches `mhz`, else the fastest Fmax found.
 fn at_clock(f: &Format, mhz: f64, timing: &HashMap<String, Timing>) -> Depth {
     let mut best: Option<f64> = None;
-    for cuts in depths(f) {
+    for &(cuts, _) in depths(f) {
         if let Some(t) = timing.get(&module(f, cuts)) {
             if t.fmax_mhz >= mhz {
                 return Depth::Take(cuts);

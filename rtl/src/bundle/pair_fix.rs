@@ -326,12 +326,9 @@ pub fn bundle_fix_module(bf: &BundleFixFormat) -> String {
 
 /// The module name of the fixed bundle pair for `bf` with cut points `cuts`: the format's name with the
 /// suffix of the configuration in [`BUNDLE_FIX_DEPTHS`] (`_p5` for the 5-clock pair; an unlisted
-/// configuration gets `_c<cuts in hex>`).
+/// configuration gets `_c<cuts in two hex digits>`, [`crate::cut::depth_suffix`]).
 pub fn bundle_fix_module_cuts(bf: &BundleFixFormat, cuts: usize) -> String {
-    let suffix = match BUNDLE_FIX_DEPTHS.iter().find(|(c, _)| *c == cuts) {
-        Some((_, s)) => s.to_string(),
-        None => format!("_c{cuts:x}"),
-    };
+    let suffix = crate::cut::depth_suffix(&BUNDLE_FIX_DEPTHS, cuts);
     format!("bundle_fix_{}{suffix}", bf.name())
 }
 

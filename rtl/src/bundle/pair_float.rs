@@ -348,12 +348,9 @@ pub fn bundle_float_module(f: &FloatFormat) -> String {
 
 /// Module name of the float bundle pair for a format and cut points: the format's name with the suffix
 /// of the configuration in [`BUNDLE_FLOAT_DEPTHS`] (`_p13` for the 13-clock pair; an unlisted
-/// configuration gets `_c<cuts in hex>`).
+/// configuration gets `_c<cuts in two hex digits>`, [`crate::cut::depth_suffix`]).
 pub fn bundle_float_module_cuts(f: &FloatFormat, cuts: usize) -> String {
-    let suffix = match BUNDLE_FLOAT_DEPTHS.iter().find(|(c, _)| *c == cuts) {
-        Some((_, s)) => s.to_string(),
-        None => format!("_c{cuts:x}"),
-    };
+    let suffix = crate::cut::depth_suffix(&BUNDLE_FLOAT_DEPTHS, cuts);
     format!("bundle_float_{}{suffix}", f.name())
 }
 
