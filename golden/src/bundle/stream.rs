@@ -237,7 +237,7 @@ impl<P: PairDatapath> StreamModel<P> {
             Some(Entry::Bundle {
                 tag: j.tag,
                 active: j.active,
-                set: j.set,
+                set: j.set % STREAM_SETS as u8,
                 outer: j.boxes.outer,
                 all_hit,
                 all_miss,

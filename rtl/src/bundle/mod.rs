@@ -8,6 +8,7 @@
 //! | [`edge_float::BundleFloatTest`] | `bundle/edge_float.rs` | one float edge tester, `golden::bundle::float` |
 //! | [`pair_float::BundleFloat`] | `bundle/pair_float.rs` | the float pair, `golden::bundle::float::decide_float` |
 //! | [`split::BundleSplit`] | `bundle/split.rs` | the results processor, `golden::bundle::split` |
+//! | [`stream::BundleStream`] | `bundle/stream.rs` | the results processor with jobs in flight, `golden::bundle::stream` |
 //!
 //! Which configurations exist: [`registry`].
 
@@ -20,3 +21,4 @@ pub mod pair_fix;
 pub mod pair_float;
 pub mod registry;
 pub mod split;
+pub mod stream;

@@ -4,6 +4,7 @@
 use super::pair_fix::BundleFix;
 use super::pair_float::BundleFloat;
 use super::split::BundleSplit;
+use super::stream::BundleStream;
 
 /// The fixed-point AllHit + AnyHit bundle pair over b8 (`FD = 6`).
 pub type BundleFixB8 = BundleFix<8, 9, 9, 14>;
@@ -45,3 +46,10 @@ pub type BundleSplitB8 = BundleSplit<8, 9, 9, 14>;
 pub type BundleSplitB12 = BundleSplit<12, 13, 13, 20>;
 /// The same over b16 (`FD = 14`).
 pub type BundleSplitB16 = BundleSplit<16, 17, 17, 24>;
+
+/// The streaming results processor ([`BundleStream`], jobs in flight, 4 sets of 16 rays) over b8.
+pub type BundleStreamB8 = BundleStream<8, 9, 9, 14>;
+/// The same over b12.
+pub type BundleStreamB12 = BundleStream<12, 13, 13, 20>;
+/// The same over b16.
+pub type BundleStreamB16 = BundleStream<16, 17, 17, 24>;

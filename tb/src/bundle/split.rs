@@ -13,7 +13,7 @@
 
 use crate::bundle::pair_fix::{quantised_case, raw_bundle};
 use crate::campaign::{campaign_bounds, campaign_map};
-use crate::rtl_sim::HALF_PERIOD;
+use crate::rtl_sim::Clocked;
 use crate::verilator::Harness;
 use golden::bundle::fix::{BundleFixFormat, FixBundle};
 use golden::bundle::gen::BundleGen;
@@ -25,8 +25,6 @@ use rand::{Rng, SeedableRng};
 use rand_pcg::Pcg64;
 use rtl::bundle::split::{split_clocks, BundleSplitIo, SplitIn, SplitJob, SplitOut, SPLIT_RAYS};
 use rtl::slab::fix::code;
-use rust_hdl::core::vcd_probe::{write_vcd_change, write_vcd_dump, write_vcd_header, VCDProbe};
-use rust_hdl::prelude::*;
 use std::collections::VecDeque;
 use std::path::Path;
 use std::sync::mpsc::sync_channel;
@@ -34,56 +32,25 @@ use std::sync::mpsc::sync_channel;
 /// The ray store as the model sees it.
 pub type RayStore = [FixBundle; SPLIT_RAYS];
 
-/// A results processor in simulation (the direct loop of [`crate::rtl_sim`]).
-pub struct SplitRtl<S: BundleSplitIo> {
-    pub uut: S,
-    vcd: Option<VCDProbe<crate::vcd_plain::VcdFile>>,
-    cycle: u64,
-}
+/// A results processor in simulation ([`Clocked`]).
+pub struct SplitRtl<S: BundleSplitIo>(Clocked<S>);
 
 impl<S: BundleSplitIo> SplitRtl<S> {
     /// The block for `bf`, connected.
     pub fn new(bf: &BundleFixFormat) -> Self {
-        let mut uut = S::for_format(bf);
-        uut.connect_all();
-        SplitRtl {
-            uut,
-            vcd: None,
-            cycle: 0,
-        }
+        SplitRtl(Clocked::new(S::for_format(bf)))
     }
 
     /// Starts writing every signal of the block to a VCD file at `path`.
-    pub fn vcd_to(mut self, path: &Path) -> std::io::Result<Self> {
-        let w = crate::vcd_plain::create(path)?;
-        let v = write_vcd_header(w, &self.uut);
-        self.vcd = Some(write_vcd_dump(v, &self.uut));
-        Ok(self)
-    }
-
-    fn settle(&mut self, t: u64) {
-        if !simulate(&mut self.uut, 1000) {
-            panic!(
-                "the results processor failed to converge in cycle {}",
-                self.cycle
-            );
-        }
-        if let Some(mut v) = self.vcd.take() {
-            v.timestamp(t).expect("VCD write");
-            self.vcd = Some(write_vcd_change(v, &self.uut));
-        }
+    pub fn vcd_to(self, path: &Path) -> std::io::Result<Self> {
+        Ok(SplitRtl(self.0.vcd_to(path)?))
     }
 
     /// One clock: drive the inputs of this cycle, clock, and return the outputs of the next cycle.
     pub fn step(&mut self, input: &SplitIn) -> SplitOut {
-        self.uut.drive(input);
-        self.uut.set_clock(false);
-        let t = self.cycle * 2 * HALF_PERIOD;
-        self.settle(t);
-        self.uut.set_clock(true);
-        self.settle(t + HALF_PERIOD);
-        self.cycle += 1;
-        self.uut.outputs()
+        self.0.uut.drive(input);
+        self.0.clock(S::set_clock);
+        self.0.uut.outputs()
     }
 }
 

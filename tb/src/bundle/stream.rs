@@ -1,0 +1,371 @@
+//! Testbench glue of the streaming results processor ([`rtl::bundle::stream::BundleStream`]): a rust-hdl
+//! driver with optional VCD, a seeded open-loop stimulus, a checker that runs the clock-by-clock model
+//! (`golden::bundle::stream::StreamModel`) beside the block and compares every output in every clock,
+//! and the same over the Verilated Verilog (with the rust-hdl simulation in lockstep for a prefix).
+//!
+//! The stimulus (see [`StreamStim`]) loads ray sets (BundleGen cases' rays quantised as tiny bundles,
+//! padded up to 16, now and then raw codes) into the four sets one ray a clock, while jobs against the
+//! loaded sets start in bursts (a start every clock, which the block takes only when `ready`) and
+//! quieter phases; garbage rays land at random addresses now and then, and, with resets on, `rst` comes
+//! at random. The model predicts the block exactly for any inputs, so writes that break the ray-store
+//! contract are still checked bit for bit; the functional meaning of a job (its mask is `split_fix` of
+//! its rays) is checked where the contract holds, by [`check_results`].
+
+use crate::bundle::pair_fix::{quantised_case, raw_bundle};
+use crate::campaign::{campaign_bounds, campaign_map};
+use crate::rtl_sim::Clocked;
+use crate::verilator::Harness;
+use golden::bundle::edge::BoxPair;
+use golden::bundle::fix::{BundleFixFormat, FixBundle};
+use golden::bundle::gen::BundleGen;
+use golden::bundle::stream::{StreamJob, StreamModel, StreamOut, STREAM_RAYS, STREAM_SETS};
+use golden::format::fixed::{FixBox, GridMap};
+use rand::{Rng, SeedableRng};
+use rand_pcg::Pcg64;
+use rtl::bundle::pair_fix::BUNDLE_FIX_LATENCY;
+use rtl::bundle::stream::{stream_in_word, BundleStreamIo, FixStreamIn, FixStreamJob};
+use std::collections::VecDeque;
+use std::path::Path;
+use std::sync::mpsc::sync_channel;
+
+/// The model of the fixed processor over `bf`.
+pub fn stream_model(bf: &BundleFixFormat) -> StreamModel<BundleFixFormat> {
+    StreamModel::new(*bf, BUNDLE_FIX_LATENCY)
+}
+
+/// A streaming processor in simulation ([`Clocked`]).
+pub struct StreamRtl<S: BundleStreamIo>(Clocked<S>);
+
+impl<S: BundleStreamIo> StreamRtl<S> {
+    /// The block for `bf`, connected.
+    pub fn new(bf: &BundleFixFormat) -> Self {
+        StreamRtl(Clocked::new(S::for_format(bf)))
+    }
+
+    /// Starts writing every signal of the block to a VCD file at `path`.
+    pub fn vcd_to(self, path: &Path) -> std::io::Result<Self> {
+        Ok(StreamRtl(self.0.vcd_to(path)?))
+    }
+
+    /// The outputs in this clock.
+    pub fn outputs(&self) -> StreamOut {
+        self.0.uut.outputs()
+    }
+
+    /// One clock: drive the inputs, clock, and return the outputs of the next clock.
+    pub fn step(&mut self, input: &FixStreamIn) -> StreamOut {
+        self.0.uut.drive(input);
+        self.0.clock(S::set_clock);
+        self.0.uut.outputs()
+    }
+}
+
+/// A seeded open-loop stimulus (see the module doc), `clocks` clocks long.
+pub struct StreamStim {
+    bf: BundleFixFormat,
+    map: GridMap,
+    gen: BundleGen,
+    rng: Pcg64,
+    /// Per set: the bundle and box pair of the case loaded into it, and its ray count.
+    sets: [(FixBundle, BoxPair<FixBox>, usize); STREAM_SETS],
+    pending: VecDeque<(u8, u8, FixBundle)>,
+    clocks_left: u64,
+    /// Start probability in this phase, in 1/16, and the clocks left in the phase.
+    phase: (u32, u32),
+    tag: u8,
+    resets: bool,
+}
+
+impl StreamStim {
+    pub fn new(bf: BundleFixFormat, seed: u64, clocks: u64) -> Self {
+        let (lo, hi) = campaign_bounds();
+        StreamStim {
+            bf,
+            map: campaign_map(bf.base),
+            gen: BundleGen::new(seed, lo, hi, 0.6),
+            rng: Pcg64::seed_from_u64(seed ^ 0x5eed_57ea),
+            sets: [(FixBundle::default(), BoxPair::default(), 0); STREAM_SETS],
+            pending: VecDeque::new(),
+            clocks_left: clocks,
+            phase: (16, 0),
+            tag: 0,
+            resets: false,
+        }
+    }
+
+    /// The same with `rst` high in one clock in 400, at random.
+    pub fn with_resets(mut self) -> Self {
+        self.resets = true;
+        self
+    }
+
+    fn draw_case(&mut self) -> (FixBundle, BoxPair<FixBox>, Vec<FixBundle>) {
+        loop {
+            let c = if self.rng.gen_ratio(1, 8) {
+                self.gen.grid_one_ray(&self.map)
+            } else {
+                self.gen.next_case()
+            };
+            if let Some(q) = quantised_case(&self.bf, &self.map, &c) {
+                return q;
+            }
+        }
+    }
+
+    /// Queues a new ray set for set `s`: a case's rays, sometimes padded to 16, sometimes with raw
+    /// codes among them.
+    fn load_set(&mut self, s: u8) {
+        let (b, p, mut rays) = self.draw_case();
+        if self.rng.gen_ratio(1, 3) {
+            while rays.len() < STREAM_RAYS {
+                let more = self.draw_case().2;
+                rays.extend(more);
+            }
+        }
+        rays.truncate(STREAM_RAYS);
+        if self.rng.gen_ratio(1, 10) {
+            for r in rays.iter_mut() {
+                if self.rng.gen_ratio(1, 3) {
+                    *r = *raw_bundle(&self.bf, &mut self.rng).0.sides().0;
+                }
+            }
+        }
+        for (i, r) in rays.iter().enumerate() {
+            self.pending.push_back((s, i as u8, *r));
+        }
+        self.sets[s as usize] = (b, p, rays.len());
+    }
+
+    fn job(&mut self) -> FixStreamJob {
+        let set = self.rng.gen_range(0..STREAM_SETS) as u8;
+        let (bundle, mut boxes, n) = self.sets[set as usize];
+        if self.rng.gen_ratio(1, 3) {
+            boxes = self.draw_case().1;
+        }
+        let all = ((1u32 << n) - 1) as u16;
+        let active = match self.rng.gen_range(0..16) {
+            0 => 0,
+            1..=5 => all,
+            6 | 7 if n > 0 => 1 << self.rng.gen_range(0..n),
+            _ => self.rng.gen::<u16>() & all,
+        };
+        self.tag = self.tag.wrapping_add(1);
+        StreamJob {
+            bundle,
+            boxes,
+            active,
+            set,
+            tag: self.tag,
+        }
+    }
+}
+
+impl Iterator for StreamStim {
+    type Item = FixStreamIn;
+    fn next(&mut self) -> Option<FixStreamIn> {
+        if self.clocks_left == 0 {
+            return None;
+        }
+        self.clocks_left -= 1;
+        if self.phase.1 == 0 {
+            let p = [16, 16, 12, 8, 3][self.rng.gen_range(0..5)];
+            self.phase = (p, self.rng.gen_range(20..300));
+        }
+        self.phase.1 -= 1;
+        if self.pending.is_empty() && self.rng.gen_ratio(1, 24) {
+            let s = self.rng.gen_range(0..STREAM_SETS) as u8;
+            self.load_set(s);
+        }
+        let mut input = FixStreamIn::default();
+        if !self.pending.is_empty() && self.rng.gen_ratio(3, 4) {
+            input.write = self.pending.pop_front();
+        } else if self.rng.gen_ratio(1, 32) {
+            let r = *raw_bundle(&self.bf, &mut self.rng).0.sides().0;
+            input.write = Some((
+                self.rng.gen_range(0..STREAM_SETS) as u8,
+                self.rng.gen_range(0..STREAM_RAYS) as u8,
+                r,
+            ));
+        }
+        if self.rng.gen_ratio(self.phase.0, 16) {
+            input.start = Some(self.job());
+        }
+        input.reset = self.resets && self.rng.gen_ratio(1, 400);
+        Some(input)
+    }
+}
+
+/// What a run covered.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub struct StreamStats {
+    pub clocks: u64,
+    /// Jobs taken (start while ready, no reset).
+    pub taken: u64,
+    pub done: u64,
+    pub all_hit: u64,
+    pub all_miss: u64,
+    pub split: u64,
+    /// Split jobs of 16 active rays.
+    pub full_splits: u64,
+    /// Reports that overtook an earlier job still in flight.
+    pub overtakes: u64,
+    /// Clocks with `start` high and `ready` low.
+    pub refused: u64,
+    /// Clocks the pair's input was used.
+    pub busy: u64,
+    /// The split queue's largest occupancy.
+    pub max_queued: u64,
+    pub resets: u64,
+}
+
+/// The model beside a block: steps both with each input and compares outputs, counting coverage.
+pub struct StreamChecker {
+    model: StreamModel<BundleFixFormat>,
+    /// Tags of the jobs in flight, oldest first, with their active counts.
+    in_flight: VecDeque<(u8, u32)>,
+    pub stats: StreamStats,
+}
+
+impl StreamChecker {
+    pub fn new(bf: &BundleFixFormat) -> Self {
+        Self::with_model(stream_model(bf))
+    }
+
+    /// A checker with another model (to show that a wrong one is caught).
+    pub fn with_model(model: StreamModel<BundleFixFormat>) -> Self {
+        StreamChecker {
+            model,
+            in_flight: VecDeque::new(),
+            stats: StreamStats::default(),
+        }
+    }
+
+    /// The model's outputs in this clock.
+    pub fn expected(&self) -> StreamOut {
+        self.model.outputs()
+    }
+
+    /// One clock of `input`; `got` is the block's outputs after it. Errors name the clock and both.
+    pub fn check(&mut self, input: &FixStreamIn, got: &StreamOut) -> Result<(), String> {
+        let s = &mut self.stats;
+        let ready = self.model.ready();
+        if let Some(j) = input.start.as_ref().filter(|_| !input.reset) {
+            if ready {
+                s.taken += 1;
+                self.in_flight.push_back((j.tag, j.active.count_ones()));
+            } else {
+                s.refused += 1;
+            }
+        }
+        self.model.step(input);
+        let want = self.model.outputs();
+        s.clocks += 1;
+        s.busy = self.model.busy_clocks;
+        s.max_queued = self.model.max_queued as u64;
+        if input.reset {
+            s.resets += 1;
+            self.in_flight.clear();
+        }
+        if *got != want {
+            return Err(format!(
+                "clock {}: got {got:?}\n  model {want:?}\n  input {input:?}",
+                s.clocks
+            ));
+        }
+        if want.done {
+            s.done += 1;
+            let k = self
+                .in_flight
+                .iter()
+                .position(|&(t, _)| t == want.tag)
+                .ok_or_else(|| format!("clock {}: done with an unknown tag", s.clocks))?;
+            s.overtakes += (k > 0) as u64;
+            let (_, n) = self.in_flight.remove(k).expect("found");
+            if want.all_hit {
+                s.all_hit += 1;
+            } else if want.all_miss {
+                s.all_miss += 1;
+            } else {
+                s.split += 1;
+                s.full_splits += (n == STREAM_RAYS as u32) as u64;
+            }
+        }
+        Ok(())
+    }
+}
+
+/// Runs `stim` through the rust-hdl simulation with the checker's model beside it; every clock compared.
+pub fn run_stream<S: BundleStreamIo>(
+    mut ck: StreamChecker,
+    dut: &mut StreamRtl<S>,
+    stim: impl IntoIterator<Item = FixStreamIn>,
+) -> Result<StreamStats, String> {
+    for input in stim {
+        let got = dut.step(&input);
+        ck.check(&input, &got)?;
+    }
+    Ok(ck.stats)
+}
+
+/// Streams `stim` through the Verilator `harness`, the model beside it (every clock compared), and for
+/// the first `lockstep` clocks the rust-hdl simulation too.
+pub fn stream_xsim<S: BundleStreamIo, It>(
+    bf: BundleFixFormat,
+    harness: &Harness,
+    stim: It,
+    lockstep: u64,
+) -> Result<StreamStats, String>
+where
+    It: Iterator<Item = FixStreamIn> + Send + 'static,
+{
+    let ports: Vec<String> = harness.inputs.iter().map(|p| p.name.clone()).collect();
+    let (tx, rx) = sync_channel::<FixStreamIn>(1 << 14);
+    let records = stim.map(move |input| {
+        let rec = ports
+            .iter()
+            .map(|p| stream_in_word(&bf, p, &input).expect("known port"))
+            .collect();
+        tx.send(input).expect("consumer alive");
+        rec
+    });
+    let mut rtl = (lockstep > 0).then(|| StreamRtl::<S>::new(&bf));
+    let mut ck = StreamChecker::new(&bf);
+    let names = ["ready", "done", "done_tag", "all_hit", "all_miss", "split", "mask"];
+    let idx: Vec<usize> = names
+        .iter()
+        .map(|n| {
+            harness
+                .output_index(n)
+                .ok_or_else(|| format!("no output port {n}"))
+        })
+        .collect::<Result<_, _>>()?;
+    harness.stream(records, |cycle, out| {
+        let input = rx.recv().map_err(|_| "producer ended early".to_string())?;
+        let w = |k: usize| out[idx[k]];
+        let got = StreamOut {
+            ready: w(0) != 0,
+            done: w(1) != 0,
+            tag: w(2) as u8,
+            all_hit: w(3) != 0,
+            all_miss: w(4) != 0,
+            split: w(5) != 0,
+            mask: w(6) as u16,
+        };
+        ck.check(&input, &got)
+            .map_err(|e| format!("Verilator: {e}"))?;
+        if cycle >= lockstep {
+            rtl = None;
+        }
+        if let Some(sim) = rtl.as_mut() {
+            let s = sim.step(&input);
+            if s != got {
+                return Err(format!(
+                    "clock {}: Verilator {got:?}, rust-hdl simulation {s:?}",
+                    cycle + 1
+                ));
+            }
+        }
+        Ok(())
+    })?;
+    Ok(ck.stats)
+}

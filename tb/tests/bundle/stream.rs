@@ -1,0 +1,169 @@
+//! The streaming results processor (`rtl::bundle::stream::BundleStream`): the rust-hdl simulation clock
+//! for clock against `golden::bundle::stream::StreamModel` (ready, done, tag, result and the held result
+//! fields in every clock) on open-loop job streams with bursts, split jobs queueing, four ray sets loaded
+//! while jobs run, garbage writes and resets; a wrong model is caught; the exported Verilog (Verilator
+//! lint, Icarus, Verilator cross-simulation against the model and the rust-hdl simulation).
+//! Each test prints its counts and time (run with `--nocapture`).
+
+use golden::bundle::fix::BundleFixFormat;
+use golden::bundle::stream::StreamModel;
+use rtl::bundle::pair_fix::BUNDLE_FIX_LATENCY;
+use rtl::bundle::stream::{bundle_stream_module, BundleStreamIo};
+use std::time::Instant;
+use tb::bundle::stream::{
+    run_stream, stream_xsim, StreamChecker, StreamRtl, StreamStats, StreamStim,
+};
+
+fn preset(i: usize) -> BundleFixFormat {
+    BundleFixFormat::presets()[i]
+}
+
+/// Every outcome, full splits, a queue in use, reports out of order and refused starts must occur.
+fn well_covered(bf: &BundleFixFormat, s: &StreamStats) {
+    let j = s.done / 20;
+    assert!(
+        s.all_hit > j && s.all_miss > j && s.split > j && s.full_splits > 0,
+        "{}: every outcome must be well represented: {s:?}",
+        bf.name()
+    );
+    assert!(
+        s.max_queued >= 3 && s.overtakes > j && s.refused > j,
+        "{}: the queue, out-of-order reports and refused starts must occur: {s:?}",
+        bf.name()
+    );
+}
+
+fn rtl_matches_model<S: BundleStreamIo>(bf: BundleFixFormat, clocks: u64, seed: u64) {
+    let start = Instant::now();
+    let mut dut = StreamRtl::<S>::new(&bf);
+    let stats = run_stream(
+        StreamChecker::new(&bf),
+        &mut dut,
+        StreamStim::new(bf, seed, clocks),
+    )
+    .unwrap_or_else(|e| panic!("{}: {e}", bf.name()));
+    println!(
+        "{}: {stats:?} match in {:.1} s",
+        bf.name(),
+        start.elapsed().as_secs_f64()
+    );
+    assert_eq!(stats.clocks, clocks);
+    well_covered(&bf, &stats);
+}
+
+#[test]
+fn stream_rtl_matches_model_b8() {
+    rtl_matches_model::<rtl::BundleStreamB8>(preset(0), 20_000, 1);
+}
+
+#[test]
+fn stream_rtl_matches_model_b12() {
+    rtl_matches_model::<rtl::BundleStreamB12>(preset(1), 20_000, 2);
+}
+
+#[test]
+fn stream_rtl_matches_model_b16() {
+    rtl_matches_model::<rtl::BundleStreamB16>(preset(2), 20_000, 3);
+}
+
+/// The check can fail: a model whose pair answers one clock late disagrees with the RTL.
+#[test]
+fn stream_wrong_model_is_caught() {
+    let bf = preset(1);
+    let mut dut = StreamRtl::<rtl::BundleStreamB12>::new(&bf);
+    let e = run_stream(
+        StreamChecker::with_model(StreamModel::new(bf, BUNDLE_FIX_LATENCY + 1)),
+        &mut dut,
+        StreamStim::new(bf, 4, 2_000),
+    )
+    .expect_err("a wrong latency must be caught");
+    println!("caught: {e}");
+}
+
+/// Synchronous reset at random clocks: every job in flight is dropped, in the rust-hdl simulation and
+/// in Verilator (every clock against rust-hdl and the model).
+#[test]
+fn stream_reset_drops_jobs_in_flight_b12() {
+    let bf = preset(1);
+    let clocks = 20_000;
+    let mut dut = StreamRtl::<rtl::BundleStreamB12>::new(&bf);
+    let stats = run_stream(
+        StreamChecker::new(&bf),
+        &mut dut,
+        StreamStim::new(bf, 51, clocks).with_resets(),
+    )
+    .unwrap_or_else(|e| panic!("{}: {e}", bf.name()));
+    assert!(stats.resets > 20, "{stats:?}");
+    assert!(stats.done < stats.taken, "{stats:?}");
+    let (v, _) = export::<rtl::BundleStreamB12>(&bf);
+    let h = tb::verilator::build(
+        &v,
+        &bundle_stream_module(&bf),
+        &tb::out_dir().join("verilator"),
+    )
+    .unwrap_or_else(|e| panic!("{e}"));
+    let x = stream_xsim::<rtl::BundleStreamB12, _>(
+        bf,
+        &h,
+        StreamStim::new(bf, 51, clocks).with_resets(),
+        u64::MAX,
+    )
+    .unwrap_or_else(|e| panic!("{}: {e}", bf.name()));
+    assert_eq!(x, stats);
+}
+
+fn export<S: BundleStreamIo>(bf: &BundleFixFormat) -> (String, std::path::PathBuf) {
+    let name = bundle_stream_module(bf);
+    let v = rtl::export::verilog_named(&mut S::for_format(bf), &name);
+    let path = tb::verilog_tools::write(&v, &name);
+    (v, path)
+}
+
+#[test]
+fn stream_verilog_is_lint_clean_and_accepted_by_icarus() {
+    for path in [
+        export::<rtl::BundleStreamB8>(&preset(0)).1,
+        export::<rtl::BundleStreamB12>(&preset(1)).1,
+        export::<rtl::BundleStreamB16>(&preset(2)).1,
+    ] {
+        tb::verilog_tools::lint(&path).unwrap_or_else(|e| panic!("{e}"));
+        tb::verilog_tools::icarus(&path).unwrap_or_else(|e| panic!("{e}"));
+    }
+}
+
+fn cross_simulate<S: BundleStreamIo>(bf: BundleFixFormat, clocks: u64, lockstep: u64, seed: u64) {
+    let start = Instant::now();
+    let (v, _) = export::<S>(&bf);
+    let h = tb::verilator::build(
+        &v,
+        &bundle_stream_module(&bf),
+        &tb::out_dir().join("verilator"),
+    )
+    .unwrap_or_else(|e| panic!("{e}"));
+    let built = start.elapsed().as_secs_f64();
+    let stats = stream_xsim::<S, _>(bf, &h, StreamStim::new(bf, seed, clocks), lockstep)
+        .unwrap_or_else(|e| panic!("{}: {e}", bf.name()));
+    println!(
+        "{}: {stats:?} (harness ready in {built:.1} s, {:.1} s in all)",
+        bf.name(),
+        start.elapsed().as_secs_f64()
+    );
+    assert_eq!(stats.clocks, clocks);
+    assert!(stats.done >= 300_000, "{stats:?}");
+    well_covered(&bf, &stats);
+}
+
+#[test]
+fn stream_verilator_matches_model_and_rtl_b8() {
+    cross_simulate::<rtl::BundleStreamB8>(preset(0), 900_000, 50_000, 8);
+}
+
+#[test]
+fn stream_verilator_matches_model_and_rtl_b12() {
+    cross_simulate::<rtl::BundleStreamB12>(preset(1), 900_000, 50_000, 6);
+}
+
+#[test]
+fn stream_verilator_matches_model_and_rtl_b16() {
+    cross_simulate::<rtl::BundleStreamB16>(preset(2), 900_000, 50_000, 7);
+}
