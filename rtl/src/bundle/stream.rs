@@ -528,8 +528,7 @@ impl<const G: usize, const V: usize, const D: usize, const T: usize> Logic
         self.decided.next = self.pair.all_hit.val() | self.pair.all_miss.val();
         self.finish_bundle.next =
             self.bundle_back.val() & (self.decided.val() | !self.l_active.q.val().any());
-        self.push.next =
-            self.bundle_back.val() & !self.decided.val() & self.l_active.q.val().any();
+        self.push.next = self.bundle_back.val() & !self.decided.val() & self.l_active.q.val().any();
         // Two-ray mode: all_hit = ray A may hit, all_miss = ray B misses.
         if self.pair.all_hit.val() {
             self.got_a.next = self.one16.val() << self.pair.tag_out.val().get_bits::<4>(0);

@@ -5,3 +5,4 @@ pub mod pair_fix;
 pub mod pair_float;
 pub mod split;
 pub mod stream;
+pub mod stream_scene;

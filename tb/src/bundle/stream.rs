@@ -330,7 +330,9 @@ where
     });
     let mut rtl = (lockstep > 0).then(|| StreamRtl::<S>::new(&bf));
     let mut ck = StreamChecker::new(&bf);
-    let names = ["ready", "done", "done_tag", "all_hit", "all_miss", "split", "mask"];
+    let names = [
+        "ready", "done", "done_tag", "all_hit", "all_miss", "split", "mask",
+    ];
     let idx: Vec<usize> = names
         .iter()
         .map(|n| {

@@ -167,3 +167,38 @@ fn stream_verilator_matches_model_and_rtl_b12() {
 fn stream_verilator_matches_model_and_rtl_b16() {
     cross_simulate::<rtl::BundleStreamB16>(preset(2), 900_000, 50_000, 7);
 }
+
+/// Scene job streams, closed loop (`tb::bundle::stream_scene`): on a small room, primary rays in 4x4
+/// tiles and bounce and shadow rays bundled 16 at most, every job's mask equals the recorded model
+/// mask and every clock equals the clock-by-clock model; the pair's input is used in exactly the
+/// model's busy-pair count of clocks. Prints utilisation and clocks per job (figures, not thresholds).
+#[test]
+fn stream_scene_jobs_replay_closed_loop_b12() {
+    use tb::bundle::stream_scene::{run_decided, run_trees, scene_streams};
+    let bf = preset(1);
+    let sc = golden::scene::tri_scene::by_name("room", 1, None).unwrap();
+    let streams = scene_streams(&sc, 1, (24, 16), 4, (16, 0.2), &bf).unwrap();
+    assert_eq!(streams.len(), 3);
+    for (set, bundling, trees) in &streams {
+        assert!(trees.jobs.len() > trees.bundles.len(), "{set}: {trees:?}");
+        let mut dut = StreamRtl::<rtl::BundleStreamB12>::new(&bf);
+        let r = run_trees(&bf, trees, &mut dut, || {}).unwrap_or_else(|e| panic!("{set}: {e}"));
+        assert_eq!(r.jobs, trees.jobs.len() as u64, "{set}");
+        assert_eq!(
+            r.busy, trees.pair_cycles,
+            "{set}: busy clocks = model pair cycles"
+        );
+        let mut dut = StreamRtl::<rtl::BundleStreamB12>::new(&bf);
+        let d = run_decided(&bf, trees, &mut dut).unwrap_or_else(|e| panic!("{set}: {e}"));
+        println!(
+            "{set} {bundling}: {} bundles, {} jobs, {} clocks, utilisation {:.3}, {:.2} clocks/job; \
+             decided-only stream: {:.3} tests/clock",
+            r.bundles,
+            r.jobs,
+            r.clocks,
+            r.utilisation(),
+            r.clocks_per_job(),
+            d.jobs as f64 / d.clocks as f64
+        );
+    }
+}
