@@ -302,6 +302,10 @@ pub fn export_all(dir: &Path) -> std::io::Result<Vec<PathBuf>> {
     for (module, v, lat) in crate::bundle::split::bundle_split_verilog() {
         write(module, v, lat)?;
     }
+    // The streaming results processor over b12 and b16 (latency: clocks of a decided job).
+    for (module, v, lat) in crate::bundle::stream::bundle_stream_verilog() {
+        write(module, v, lat)?;
+    }
     for f in crate::BUNDLE_FLOAT_FORMATS {
         write(
             crate::bundle::pair_float::bundle_float_module(&f),
@@ -352,6 +356,10 @@ pub enum Family {
     BundleSplit {
         bf: golden::bundle::fix::BundleFixFormat,
     },
+    /// The streaming results processor (jobs in flight, tagged reports, out of order).
+    BundleStream {
+        bf: golden::bundle::fix::BundleFixFormat,
+    },
 }
 
 /// One exported module of the catalogue: its name, its latency in clocks (for the results processor,
@@ -366,7 +374,10 @@ pub struct Exported {
 impl Exported {
     /// One test a clock (every module but the results processor).
     pub fn pipelined(&self) -> bool {
-        !matches!(self.family, Family::BundleSplit { .. })
+        !matches!(
+            self.family,
+            Family::BundleSplit { .. } | Family::BundleStream { .. }
+        )
     }
 
     /// The module's Verilog, exactly as [`export_all`] writes it.
@@ -395,6 +406,7 @@ impl Exported {
                 pick(crate::bundle::pair_float::bundle_float_deep_verilog())
             }
             Family::BundleSplit { .. } => pick(crate::bundle::split::bundle_split_verilog()),
+            Family::BundleStream { .. } => pick(crate::bundle::stream::bundle_stream_verilog()),
         }
     }
 }
@@ -495,6 +507,13 @@ pub fn catalog() -> Vec<Exported> {
             crate::bundle::split::bundle_split_module(bf),
             crate::bundle::pair_fix::BUNDLE_FIX_LATENCY + 1,
             Family::BundleSplit { bf: *bf },
+        );
+    }
+    for bf in &golden::bundle::fix::BundleFixFormat::presets()[1..] {
+        add(
+            crate::bundle::stream::bundle_stream_module(bf),
+            crate::bundle::pair_fix::BUNDLE_FIX_LATENCY + 1,
+            Family::BundleStream { bf: *bf },
         );
     }
     for (cuts, _) in crate::bundle::pair_float::BUNDLE_FLOAT_DEPTHS {

@@ -18,6 +18,7 @@ mod run_bundles;
 mod run_vectors;
 mod scene;
 mod stability_cmd;
+mod stream_cmd;
 mod sweep_cmd;
 mod synth;
 mod trace_cmd;
@@ -139,6 +140,10 @@ enum Cmd {
     /// The bundle pair's conservativeness campaign: random and adversarial bundles on every datapath
     /// against the exact per-ray results and the exact oracle (writes bundle_campaign.md).
     BundleCampaign(bundle_cmd::CampaignArgs),
+    /// Scene job streams through the streaming results processor's RTL (rust-hdl, checked clock by
+    /// clock): clocks, pair-input utilisation against the model's busy-pair count, clocks per job
+    /// (writes bundle_stream.csv and bundle_stream.md).
+    BundleStream(stream_cmd::Args),
     /// The smallest fixed-point and float formats whose slab tester meets a budget of extra tester cycles
     /// on each scene and ray set, their area and latency against fp32, and their Verilog (writes
     /// fit/fit.csv, fit/fit.md, fit/*.v; --synth runs Yosys on fitted formats not in the area table).
@@ -344,6 +349,7 @@ fn main() -> ExitCode {
         Cmd::Stability => stability_cmd::run(&cli.out).map(|t| print!("{t}")),
         Cmd::Sweep(a) => sweep_cmd::run(&a, &cli.out).map(|t| print!("{t}")),
         Cmd::Trace(a) => trace_cmd::run(&a, &cli.out).map(|t| print!("{t}")),
+        Cmd::BundleStream(a) => stream_cmd::run(&a, &cli.out).map(|t| print!("{t}")),
         Cmd::BundleCampaign(a) => bundle_cmd::campaign(&a, &cli.out).map(|t| print!("{t}")),
         Cmd::CullScenes {
             scenes,

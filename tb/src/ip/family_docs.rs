@@ -768,6 +768,63 @@ AnyHit, the product 0 when `u` is zero (either sign), even for `t = +inf`.",
     }
 }
 
+/// The stored-ray ports of a results processor over `bf`.
+fn store_ports(bf: &BundleFixFormat) -> Vec<(String, String)> {
+    let (g, t, fd, db) = (bf.base.g, bf.base.t, bf.fd, bf.dir_bits());
+    vec![
+        port("ray_o_lo", format!("stored ray's origin, `floor(o_g)`, signed {g} bits")),
+        port("ray_o_hi", format!("stored ray's origin, `ceil(o_g)`, signed {g} bits")),
+        port("ray_d_lo", format!("stored ray's direction, `floor(d * 2^(j + {fd}))` with the ray's own `j`, signed {db} bits")),
+        port("ray_d_hi", format!("stored ray's direction, `ceil(d * 2^(j + {fd}))`, signed {db} bits")),
+        port("ray_t", format!("stored ray's `t_max`, `ceil` in the ray's t codes, signed {t} bits; the most positive code is +inf")),
+    ]
+}
+
+/// The job's bundle and box ports of a results processor over `bf`.
+fn job_ports(bf: &BundleFixFormat) -> Vec<(String, String)> {
+    let (g, t, fd, db) = (bf.base.g, bf.base.t, bf.fd, bf.dir_bits());
+    vec![
+        port("o_lo", format!("job bundle's origin box, lower corner `floor(o_min_g)`, signed {g} bits")),
+        port("o_hi", format!("job bundle's origin box, upper corner `ceil(o_max_g)`, signed {g} bits")),
+        port("d_lo", format!("job bundle's direction box, lower corner `floor(d_min * 2^(j + {fd}))`, signed {db} bits")),
+        port("d_hi", format!("job bundle's direction box, upper corner `ceil(d_max * 2^(j + {fd}))`, signed {db} bits")),
+        port("t_lo", format!("job bundle's smallest `t_max`, `floor` in t codes, signed {t} bits")),
+        port("t_hi", format!("job bundle's largest `t_max`, `ceil` in t codes, signed {t} bits; most positive code = +inf")),
+        port("in_lo", format!("node box, inner (AllHit) lower corner `ceil(min_g)`, signed {g} bits")),
+        port("in_hi", format!("node box, inner (AllHit) upper corner `floor(max_g)`, signed {g} bits")),
+        port("out_lo", format!("node box, outer (AnyHit and the rays) lower corner `floor(min_g)`, signed {g} bits")),
+        port("out_hi", format!("node box, outer (AnyHit and the rays) upper corner `ceil(max_g)`, signed {g} bits")),
+    ]
+}
+
+/// How the job's bundle and boxes and the stored rays of a results processor over `bf` are encoded
+/// (the same for the one-job and the streaming processor).
+fn job_encoding(bf: &BundleFixFormat) -> String {
+    let fmt = &bf.base;
+    format!(
+        "**Encoding**: the job's bundle and box are encoded exactly as for the pair `bundle_fix_{name}` (its \
+datasheet has the conditions): origin box `o_lo_a = floor(o_min_a / 2^k) - c_a`, \
+`o_hi_a = ceil(o_max_a / 2^k) - c_a`; `j` from the largest magnitude of the direction box, \
+`2^j * max_a max(|d_min_a|, |d_max_a|)` in `[1, 2)`, `d_lo_a = floor(d_min_a * 2^(j + {fd}))`, \
+`d_hi_a = ceil(d_max_a * 2^(j + {fd}))`; `t_lo = floor(t_lo_w * 2^({ft} - k - j))` (at most \
+`2^{t1} - 2` unless `t_lo_w = +inf`), `t_hi = ceil(t_hi_w * 2^({ft} - k - j))` (`2^{t1} - 1` = +inf when \
+`t_hi_w = +inf` or the code reaches it); inner box `in_lo_a = ceil(min_a / 2^k) - c_a`, \
+`in_hi_a = floor(max_a / 2^k) - c_a`, outer box `out_lo_a = floor(min_a / 2^k) - c_a`, \
+`out_hi_a = ceil(max_a / 2^k) - c_a` (equal for a box on the grid; an empty world box is \
+`lo_a = {gmax}`, `hi_a = {gmin}` in both). Each stored ray (`t_min = 0`) is the bundle of that one ray, \
+with its own `j`: `ray_o_lo/hi` floored and ceiled, `ray_d_lo/hi = floor/ceil(d_a * 2^(j + {fd}))`, \
+`ray_t = ceil(t_max * 2^({ft} - k - j))` (saturating to the +inf code); its floored `t_max` (`t_lo`) is \
+not stored. The rays of a job need not be the bundle's own rays, but only then does the report describe \
+them.\n\n",
+        name = bf.name(),
+        fd = bf.fd,
+        ft = fmt.ft,
+        t1 = fmt.t - 1,
+        gmax = fmt.gmax(),
+        gmin = fmt.gmin(),
+    )
+}
+
 /// What the datasheet says of the bundle results processor over the fixed pair of `bf`.
 pub fn bundle_split_doc(bf: &BundleFixFormat) -> FamilyDoc {
     use rtl::bundle::pair_fix::BUNDLE_FIX_LATENCY as L;
@@ -801,25 +858,14 @@ pub fn bundle_split_doc(bf: &BundleFixFormat) -> FamilyDoc {
         ),
         param("pair latency", L, "clocks of the pair inside"),
     ];
-    let ports = vec![
+    let mut ports = vec![
         port("ray_we", "ray store write enable: the ray on `ray_*` is written to entry `ray_addr` at the end of the clock"),
         port("ray_addr", format!("ray store address, 0 .. {} ({ab} bits): ray `i` is bit `i` of `active` and `mask`", n - 1)),
-        port("ray_o_lo", format!("stored ray's origin, `floor(o_g)`, signed {g} bits")),
-        port("ray_o_hi", format!("stored ray's origin, `ceil(o_g)`, signed {g} bits")),
-        port("ray_d_lo", format!("stored ray's direction, `floor(d * 2^(j + {fd}))` with the ray's own `j`, signed {db} bits")),
-        port("ray_d_hi", format!("stored ray's direction, `ceil(d * 2^(j + {fd}))`, signed {db} bits")),
-        port("ray_t", format!("stored ray's `t_max`, `ceil` in the ray's t codes, signed {t} bits; the most positive code is +inf")),
-        port("start", "start a job: taken in a clock with `ready = 1` and `rst = 0`; the job ports are sampled in that clock only"),
-        port("o_lo", format!("job bundle's origin box, lower corner `floor(o_min_g)`, signed {g} bits")),
-        port("o_hi", format!("job bundle's origin box, upper corner `ceil(o_max_g)`, signed {g} bits")),
-        port("d_lo", format!("job bundle's direction box, lower corner `floor(d_min * 2^(j + {fd}))`, signed {db} bits")),
-        port("d_hi", format!("job bundle's direction box, upper corner `ceil(d_max * 2^(j + {fd}))`, signed {db} bits")),
-        port("t_lo", format!("job bundle's smallest `t_max`, `floor` in t codes, signed {t} bits")),
-        port("t_hi", format!("job bundle's largest `t_max`, `ceil` in t codes, signed {t} bits; most positive code = +inf")),
-        port("in_lo", format!("node box, inner (AllHit) lower corner `ceil(min_g)`, signed {g} bits")),
-        port("in_hi", format!("node box, inner (AllHit) upper corner `floor(max_g)`, signed {g} bits")),
-        port("out_lo", format!("node box, outer (AnyHit and the rays) lower corner `floor(min_g)`, signed {g} bits")),
-        port("out_hi", format!("node box, outer (AnyHit and the rays) upper corner `ceil(max_g)`, signed {g} bits")),
+    ];
+    ports.extend(store_ports(bf));
+    ports.push(port("start", "start a job: taken in a clock with `ready = 1` and `rst = 0`; the job ports are sampled in that clock only"));
+    ports.extend(job_ports(bf));
+    ports.extend([
         port("active", format!("{n} bits: bit `i` = ray store entry `i` belongs to the job (tested one by one if the bundle is undecided)")),
         port("ready", "1 when no job is in progress: a `start` in this clock is taken; high again in the clock of `done`"),
         port("done", "one-clock pulse: the job's report is on the result ports from this clock until the next `done`"),
@@ -829,7 +875,7 @@ pub fn bundle_split_doc(bf: &BundleFixFormat) -> FamilyDoc {
         port("mask", format!("report, {n} bits: bit `i` = ray `i` may hit (only bits of `active` are ever set; never 0 for a ray that hits)")),
         port("cycles", "report, 8 bits: clocks the job used the pair's input, `1 + (split ? ceil(popcount(active) / 2) : 0)`"),
         port("clocks", format!("report, 8 bits: clocks from the start clock to the `done` clock ({decided}, or `{split0} + ceil(popcount(active) / 2)` when split with an active ray)")),
-    ];
+    ]);
     let idx = axis_index(&[
         "ray_o_lo", "ray_o_hi", "ray_d_lo", "ray_d_hi", "o_lo", "o_hi", "d_lo", "d_hi", "in_lo",
         "in_hi", "out_lo", "out_hi",
@@ -837,22 +883,7 @@ pub fn bundle_split_doc(bf: &BundleFixFormat) -> FamilyDoc {
     let rules = format!(
         "{grid}
 
-**Encoding**: the job's bundle and box are encoded exactly as for the pair `bundle_fix_{name}` (its \
-datasheet has the conditions): origin box `o_lo_a = floor(o_min_a / 2^k) - c_a`, \
-`o_hi_a = ceil(o_max_a / 2^k) - c_a`; `j` from the largest magnitude of the direction box, \
-`2^j * max_a max(|d_min_a|, |d_max_a|)` in `[1, 2)`, `d_lo_a = floor(d_min_a * 2^(j + {fd}))`, \
-`d_hi_a = ceil(d_max_a * 2^(j + {fd}))`; `t_lo = floor(t_lo_w * 2^({ft} - k - j))` (at most \
-`2^{t1} - 2` unless `t_lo_w = +inf`), `t_hi = ceil(t_hi_w * 2^({ft} - k - j))` (`2^{t1} - 1` = +inf when \
-`t_hi_w = +inf` or the code reaches it); inner box `in_lo_a = ceil(min_a / 2^k) - c_a`, \
-`in_hi_a = floor(max_a / 2^k) - c_a`, outer box `out_lo_a = floor(min_a / 2^k) - c_a`, \
-`out_hi_a = ceil(max_a / 2^k) - c_a` (equal for a box on the grid; an empty world box is \
-`lo_a = {gmax}`, `hi_a = {gmin}` in both). Each stored ray (`t_min = 0`) is the bundle of that one ray, \
-with its own `j`: `ray_o_lo/hi` floored and ceiled, `ray_d_lo/hi = floor/ceil(d_a * 2^(j + {fd}))`, \
-`ray_t = ceil(t_max * 2^({ft} - k - j))` (saturating to the +inf code); its floored `t_max` (`t_lo`) is \
-not stored. The rays of a job need not be the bundle's own rays, but only then does the report describe \
-them.
-
-**Job protocol** (clock `s` is the clock period whose ending rising edge samples the inputs; there is no \
+{enc}**Job protocol** (clock `s` is the clock period whose ending rising edge samples the inputs; there is no \
 `valid_in`/`tag_in`):
 1. **Load rays**: in every clock with `ray_we = 1` the ray on `ray_o_lo` .. `ray_t` is written to entry \
 `ray_addr` at the end of the clock — during a job and during `rst` too. A job's active rays must be \
@@ -878,12 +909,120 @@ when `all_miss`, the OR of the rays' \"may hit\" answers when `split`. `ready` i
 of that clock: no `done` follows for it, and `ready` is 1 from the next clock. A `start` in a clock with \
 `rst` high is not taken; a ray store write is. The ray store and the report registers keep their \
 contents.",
+        enc = job_encoding(bf),
         grid = fix_grid_text(fmt),
-        name = bf.name(),
-        ft = fmt.ft,
-        t1 = t - 1,
-        gmax = fmt.gmax(),
-        gmin = fmt.gmin(),
+        l = L,
+    );
+    FamilyDoc {
+        what,
+        params,
+        ports,
+        index: idx,
+        rules,
+    }
+}
+
+/// What the datasheet says of the streaming results processor over the fixed pair of `bf`.
+pub fn bundle_stream_doc(bf: &BundleFixFormat) -> FamilyDoc {
+    use golden::bundle::stream::{STREAM_QUEUE, STREAM_RAYS, STREAM_SETS, STREAM_TAG_BITS};
+    use rtl::bundle::pair_fix::BUNDLE_FIX_LATENCY as L;
+    use rtl::bundle::stream::STREAM_ADDR_BITS;
+    let fmt = &bf.base;
+    let (n, sets, q, tb, ab) = (
+        STREAM_RAYS,
+        STREAM_SETS,
+        STREAM_QUEUE,
+        STREAM_TAG_BITS,
+        STREAM_ADDR_BITS,
+    );
+    let decided = L + 1;
+    let split0 = 2 * L + 3;
+    let what = format!(
+        "The results processor with jobs in flight, around one fixed-point AllHit / AnyHit pair \
+         (`bundle_fix_{name}`): a job is one ray bundle against one node box, with a tag. A job is taken \
+         in any clock the pair's input is free, so the pair tests a new bundle every clock; a bundle the \
+         pair does not decide joins a split queue, and its active rays, read from a ray store of {sets} \
+         sets of {n} rays, go through the same pair two per clock ahead of new bundles. Each job reports \
+         with its tag; **results may leave in another order than the jobs came** (a decided job overtakes \
+         split ones). The mask never drops a ray that hits. A decided job reports {decided} clocks after \
+         its start; on scene job streams the pair's input is busy in 99% or more of the clocks \
+         (`rtu bundle-stream`).",
+        name = bf.name()
+    );
+    let params = vec![
+        param("G", fmt.g, "grid bits: signed coordinates"),
+        param("T", fmt.t, "t code bits (signed)"),
+        param("FT", fmt.ft, "fraction bits of a t code"),
+        param("FD", bf.fd, "fraction bits of a scaled direction code"),
+        param(
+            "D",
+            bf.dir_bits(),
+            "bits of a direction code (signed), `FD + 3`",
+        ),
+        param(
+            "rays",
+            n,
+            "rays in one set of the ray store (width of `active` and `mask`)",
+        ),
+        param("sets", sets, "sets in the ray store"),
+        param("queue", q, "entries of the split queue"),
+        param("pair latency", L, "clocks of the pair inside"),
+    ];
+    let mut ports = vec![
+        port("ray_we", "ray store write enable: the ray on `ray_*` is written to entry `ray_addr` at the end of the clock"),
+        port("ray_addr", format!("ray store address ({ab} bits): `[5:4]` the set, `[3:0]` the ray; ray `i` of a set is bit `i` of `active` and `mask`")),
+    ];
+    ports.extend(store_ports(bf));
+    ports.push(port("start", "start a job: taken in a clock with `ready = 1` and `rst = 0`; the job ports are sampled in that clock only"));
+    ports.extend(job_ports(bf));
+    ports.extend([
+        port("active", format!("{n} bits: bit `i` = ray `i` of the job's set belongs to the job (tested one by one if the bundle is undecided)")),
+        port("job_set", format!("the job's ray set, 0 .. {}", sets - 1)),
+        port("tag", format!("{tb} bits, opaque: returned on `done_tag` with the job's report")),
+        port("ready", "1 when a `start` in this clock is taken: low in the clocks the pair takes a pair of rays, and while the split queue could not hold every bundle in flight plus one"),
+        port("done", "one-clock pulse: a job's report is on the result ports from this clock until the next `done`"),
+        port("done_tag", format!("report, {tb} bits: the `tag` of the job reporting")),
+        port("all_hit", "report: the bundle test said every ray hits (then `mask = active`)"),
+        port("all_miss", "report: the bundle test said every ray misses (then `mask = 0`)"),
+        port("split", "report: the bundle was undecided and its active rays were tested one by one"),
+        port("mask", format!("report, {n} bits: bit `i` = ray `i` may hit (only bits of `active` are ever set; never 0 for a ray that hits)")),
+    ]);
+    let idx = axis_index(&[
+        "ray_o_lo", "ray_o_hi", "ray_d_lo", "ray_d_hi", "o_lo", "o_hi", "d_lo", "d_hi", "in_lo",
+        "in_hi", "out_lo", "out_hi",
+    ]);
+    let rules = format!(
+        "{grid}
+
+{enc}**Job protocol** (clock `s` is the clock period whose ending rising edge samples the inputs):
+1. **Load rays**: in every clock with `ray_we = 1` the ray on `ray_o_lo` .. `ray_t` is written to entry \
+`ray_addr` at the end of the clock, at any time (also during `rst`). A job's active rays (in its set) \
+must be written no later than its start clock and not rewritten until its `done`; with {sets} sets, the \
+rays of the next bundle can be written while jobs of the others run.
+2. **Start**: in a clock with `ready = 1`, `start = 1` and `rst = 0` the block takes the job; every job \
+port is sampled in that clock only. A `start` while `ready = 0` is ignored, not queued: hold it until \
+`ready`. `ready` is low in the clocks the pair takes a pair of rays, and while the split queue (of {q}) \
+could not take every bundle in flight plus this one; it depends on registers only, never on `start`.
+3. **Bundle test**: the bundle enters the pair in clock `s` and is answered in clock `s + {l}`. Decided \
+(`all_hit` or `all_miss`), or undecided with `active = 0`: `done` is high in clock `s + {decided}` \
+(undecided with `active = 0` reports `split = 1`, `mask = 0`). Otherwise the job joins the split queue.
+4. **Split**: one job at a time, in the order their bundles were answered, the active rays are read two \
+per clock in index order (an odd count leaves the last pair's second slot empty) and go through the \
+pair in two-ray mode in the next clock, against the outer box kept from the start clock; ray `i`'s \
+answer is AnyHit's bounds on its tiny bundle (\"may hit\"). The next queued job follows without a gap. \
+`done` is high {l} + 1 clocks after the job's last pair enters the pair: no earlier than \
+`s + {split0} + ceil(n / 2)`, `n = popcount(active)`, later when the job waits in the queue.
+5. **Report**: at most one job reports a clock. `done` is high for one clock; `done_tag`, `all_hit`, \
+`all_miss`, `split` and `mask` are valid from that clock and held until the next `done`. `mask = active` \
+when `all_hit`, `0` when `all_miss`, the OR of the rays' \"may hit\" answers when `split`. Tags are \
+returned as given; keep the tags of jobs in flight distinct to tell their reports apart.
+
+**Reset**: `rst` high in a clock drops, at the end of that clock, every job in flight (in the pair, \
+queued, or being split): no `done` follows for any of them, and `ready` is 1 from the next clock. A \
+`start` in a clock with `rst` high is not taken; a ray store write is. The ray store and the report \
+registers keep their contents.",
+        enc = job_encoding(bf),
+        grid = fix_grid_text(fmt),
         l = L,
     );
     FamilyDoc {
@@ -912,6 +1051,7 @@ mod tests {
             Family::BundleFix { bf, .. } => bundle_fix_doc(&bf),
             Family::BundleFloat { f, .. } => bundle_float_doc(&f),
             Family::BundleSplit { bf } => bundle_split_doc(&bf),
+            Family::BundleStream { bf } => bundle_stream_doc(&bf),
             _ => return None,
         })
     }
@@ -929,6 +1069,7 @@ mod tests {
             .into_iter()
             .chain(rtl::bundle::pair_fix::bundle_fix_verilog())
             .chain(rtl::bundle::split::bundle_split_verilog())
+            .chain(rtl::bundle::stream::bundle_stream_verilog())
         {
             batch.insert(m, v);
         }
@@ -1001,7 +1142,7 @@ mod tests {
             assert!(!doc.what.is_empty() && !doc.rules.is_empty() && !doc.params.is_empty());
         }
         // Every family of this file is in the catalogue.
-        assert_eq!(families.len(), 6, "families found: {families:?}");
+        assert_eq!(families.len(), 7, "families found: {families:?}");
     }
 
     #[test]
@@ -1040,6 +1181,14 @@ mod tests {
                         assert_eq!(width(p), Some(cf.f.width() as usize), "{} {p}", e.module);
                     }
                     assert_eq!(param("R"), Some(cf.r as usize));
+                }
+                Family::BundleStream { .. } => {
+                    assert_eq!(width("d_lo_0"), param("D"), "{}", e.module);
+                    assert_eq!(width("o_lo_0"), param("G"), "{}", e.module);
+                    assert_eq!(width("mask"), param("rays"), "{}", e.module);
+                    assert_eq!(width("active"), param("rays"), "{}", e.module);
+                    assert_eq!(width("ray_t"), param("T"), "{}", e.module);
+                    assert_eq!(width("done_tag"), width("tag"), "{}", e.module);
                 }
                 Family::BundleFix { .. } | Family::BundleSplit { .. } => {
                     assert_eq!(width("d_lo_0"), param("D"), "{}", e.module);

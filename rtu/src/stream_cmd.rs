@@ -1,0 +1,155 @@
+//! `rtu bundle-stream`: scene job streams through the streaming results processor's RTL
+//! (`rtl::bundle::stream::BundleStream`, rust-hdl simulation, every clock checked against the clock model
+//! and every mask against the traversal model): per scene and ray set, the clocks the job trees take
+//! closed loop, the pair-input utilisation against the model's busy-pair count, clocks per job, and the
+//! decided jobs alone as one stream (bundle tests per clock). The streams and the replay are
+//! `tb::bundle::stream_scene`.
+
+use crate::list;
+use golden::bundle::fix::BundleFixFormat;
+use golden::format::fixed::FixFormat;
+use indicatif::{ProgressBar, ProgressStyle};
+use rtl::bundle::stream::BundleStreamIo;
+use std::fmt::Write as _;
+use std::path::Path;
+use tb::bundle::stream::StreamRtl;
+use tb::bundle::stream_scene::{run_decided, run_trees, scene_streams, JobTrees, StreamRun};
+
+/// Arguments of `rtu bundle-stream`.
+#[derive(clap::Args, Debug)]
+pub struct Args {
+    /// Scenes, comma-separated: built-in names (room, grass, mesh, soup) or OBJ files (`*.obj`).
+    #[arg(long, default_value = "room,grass")]
+    scenes: String,
+    /// Image width and height of the primary rays.
+    #[arg(long, default_value_t = 64)]
+    width: usize,
+    #[arg(long, default_value_t = 48)]
+    height: usize,
+    /// Tile size of the primary-ray bundles (tile x tile pixels, at most 16 rays).
+    #[arg(long, default_value_t = 4)]
+    tile: usize,
+    /// Builder of the bounce and shadow bundles, `rays:dir_spread` (at most 16 rays).
+    #[arg(long, default_value = "16:0.2")]
+    builder: String,
+    /// Fixed preset of the processor: b8, b12 or b16.
+    #[arg(long, default_value = "b12")]
+    format: String,
+    /// Seed of the scenes and the secondary rays.
+    #[arg(long, default_value_t = 1)]
+    seed: u64,
+}
+
+/// CSV header of `bundle_stream.csv`.
+pub const CSV_HEADER: &str = "scene,rays,bundling,format,bundles,jobs,decided,clocks,busy_clocks,model_pair_cycles,utilisation,clocks_per_job,decided_stream_jobs,decided_stream_clocks,decided_tests_per_clock";
+
+fn replay<S: BundleStreamIo>(
+    bf: &BundleFixFormat,
+    trees: &JobTrees,
+    pb: &ProgressBar,
+) -> Result<(StreamRun, StreamRun), String> {
+    let r = run_trees(bf, trees, &mut StreamRtl::<S>::new(bf), || pb.inc(1))?;
+    let d = run_decided(bf, trees, &mut StreamRtl::<S>::new(bf))?;
+    Ok((r, d))
+}
+
+/// Runs the measurement; returns the markdown table, writes `bundle_stream.csv` and `.md` under `out`.
+pub fn run(a: &Args, out: &Path) -> Result<String, String> {
+    let names = list(&a.scenes, |s| Ok(s.to_string()))?;
+    let fmt = FixFormat::parse(&a.format).map_err(|e| format!("--format {}: {e}", a.format))?;
+    let bf = BundleFixFormat::over(fmt).map_err(|e| e.to_string())?;
+    let preset = BundleFixFormat::presets()
+        .iter()
+        .position(|p| *p == bf)
+        .ok_or_else(|| {
+            format!(
+                "--format {}: the processor is built over b8, b12 and b16",
+                a.format
+            )
+        })?;
+    let (n, ds) = a
+        .builder
+        .split_once(':')
+        .ok_or_else(|| format!("--builder `{}`: expected `rays:dir_spread`", a.builder))?;
+    let rays: usize = n
+        .trim()
+        .parse()
+        .map_err(|_| format!("--builder rays = `{n}` is not a number"))?;
+    let spread: f64 = ds
+        .trim()
+        .parse()
+        .map_err(|_| format!("--builder dir_spread = `{ds}` is not a number"))?;
+    if a.tile == 0 || a.tile * a.tile > 16 || rays == 0 || rays > 16 {
+        return Err(format!(
+            "--tile {} and --builder {}: a bundle holds 1 to 16 rays (the ray store's set)",
+            a.tile, a.builder
+        ));
+    }
+    let mut csv = format!("{CSV_HEADER}\n");
+    let mut table = String::from(
+        "| scene | rays | bundling | bundles | jobs | decided | clocks | pair busy (= model) | utilisation | clocks / job | decided jobs alone: tests / clock |\n|---|---|---|---|---|---|---|---|---|---|---|\n",
+    );
+    for name in &names {
+        let sc = crate::sweep_cmd::load_scene(name, a.seed)?;
+        let streams = scene_streams(
+            &sc,
+            a.seed,
+            (a.width, a.height),
+            a.tile,
+            (rays, spread),
+            &bf,
+        )
+        .map_err(|e| format!("{name}: {e}"))?;
+        for (set, bundling, trees) in &streams {
+            let pb = ProgressBar::new(trees.bundles.len() as u64);
+            pb.set_style(
+                ProgressStyle::with_template("{msg:40} {bar:30} {pos}/{len} eta {eta}")
+                    .expect("template"),
+            );
+            pb.set_message(format!("{name} {set} {bundling}"));
+            let (r, d) = match preset {
+                0 => replay::<rtl::BundleStreamB8>(&bf, trees, &pb),
+                1 => replay::<rtl::BundleStreamB12>(&bf, trees, &pb),
+                _ => replay::<rtl::BundleStreamB16>(&bf, trees, &pb),
+            }
+            .map_err(|e| format!("{name} {set} {bundling}: {e}"))?;
+            if pb.is_hidden() {
+                eprintln!("{} done", pb.message());
+            }
+            pb.finish_and_clear();
+            let dt = d.jobs as f64 / d.clocks.max(1) as f64;
+            let _ = writeln!(
+                csv,
+                "{name},{set},{bundling},{},{},{},{},{},{},{},{:.4},{:.4},{},{},{:.4}",
+                a.format,
+                r.bundles,
+                r.jobs,
+                r.decided,
+                r.clocks,
+                r.busy,
+                r.pair_cycles,
+                r.utilisation(),
+                r.clocks_per_job(),
+                d.jobs,
+                d.clocks,
+                dt
+            );
+            let _ = writeln!(
+                table,
+                "| {name} | {set} | {bundling} | {} | {} | {} | {} | {} | {:.3} | {:.2} | {:.3} |",
+                r.bundles,
+                r.jobs,
+                r.decided,
+                r.clocks,
+                r.busy,
+                r.utilisation(),
+                r.clocks_per_job(),
+                dt
+            );
+        }
+    }
+    std::fs::create_dir_all(out).map_err(|e| format!("{}: {e}", out.display()))?;
+    crate::out_file::write_file(&out.join("bundle_stream.csv"), &csv)?;
+    crate::out_file::write_file(&out.join("bundle_stream.md"), &table)?;
+    Ok(table)
+}
