@@ -41,7 +41,7 @@ pub struct Args {
 }
 
 /// CSV header of `bundle_stream.csv`.
-pub const CSV_HEADER: &str = "scene,rays,bundling,format,bundles,jobs,decided,clocks,busy_clocks,model_pair_cycles,utilisation,clocks_per_job,decided_stream_jobs,decided_stream_clocks,decided_tests_per_clock";
+pub const CSV_HEADER: &str = "scene,rays,bundling,format,bundles,jobs,decided,clocks,busy_clocks,model_pair_cycles,utilisation,clocks_per_job,decided_stream_jobs,decided_stream_clocks,decided_tests_per_clock,one_job_clocks,speedup_vs_one_job";
 
 fn replay<S: BundleStreamIo>(
     bf: &BundleFixFormat,
@@ -87,7 +87,7 @@ pub fn run(a: &Args, out: &Path) -> Result<String, String> {
     }
     let mut csv = format!("{CSV_HEADER}\n");
     let mut table = String::from(
-        "| scene | rays | bundling | bundles | jobs | decided | clocks | pair busy (= model) | utilisation | clocks / job | decided jobs alone: tests / clock |\n|---|---|---|---|---|---|---|---|---|---|---|\n",
+        "| scene | rays | bundling | bundles | jobs | decided | clocks | pair busy (= model) | utilisation | clocks / job | decided jobs alone: tests / clock | one-job processor: clocks (x) |\n|---|---|---|---|---|---|---|---|---|---|---|---|\n",
     );
     for name in &names {
         let sc = crate::sweep_cmd::load_scene(name, a.seed)?;
@@ -120,7 +120,7 @@ pub fn run(a: &Args, out: &Path) -> Result<String, String> {
             let dt = d.jobs as f64 / d.clocks.max(1) as f64;
             let _ = writeln!(
                 csv,
-                "{name},{set},{bundling},{},{},{},{},{},{},{},{:.4},{:.4},{},{},{:.4}",
+                "{name},{set},{bundling},{},{},{},{},{},{},{},{:.4},{:.4},{},{},{:.4},{},{:.3}",
                 a.format,
                 r.bundles,
                 r.jobs,
@@ -132,11 +132,13 @@ pub fn run(a: &Args, out: &Path) -> Result<String, String> {
                 r.clocks_per_job(),
                 d.jobs,
                 d.clocks,
-                dt
+                dt,
+                trees.one_job_clocks,
+                trees.one_job_clocks as f64 / r.clocks.max(1) as f64
             );
             let _ = writeln!(
                 table,
-                "| {name} | {set} | {bundling} | {} | {} | {} | {} | {} | {:.3} | {:.2} | {:.3} |",
+                "| {name} | {set} | {bundling} | {} | {} | {} | {} | {} | {:.3} | {:.2} | {:.3} | {} ({:.2}x) |",
                 r.bundles,
                 r.jobs,
                 r.decided,
@@ -144,7 +146,9 @@ pub fn run(a: &Args, out: &Path) -> Result<String, String> {
                 r.busy,
                 r.utilisation(),
                 r.clocks_per_job(),
-                dt
+                dt,
+                trees.one_job_clocks,
+                trees.one_job_clocks as f64 / r.clocks.max(1) as f64
             );
         }
     }

@@ -363,3 +363,27 @@ fn intervals_beyond_the_f64_range_round_outward_in_every_format() {
         }
     }
 }
+
+/// `rtu bundle-stream` refuses bundles the ray store cannot hold and formats it is not built over,
+/// naming the option, and writes nothing.
+#[test]
+fn bundle_stream_options_out_of_range_are_errors() {
+    let d = Dir::new("bundle-stream");
+    let out = d.0.display().to_string();
+    for (args, want) in [
+        (vec!["--tile", "5"], "--tile 5"),
+        (vec!["--builder", "17:0.2"], "--builder 17:0.2"),
+        (vec!["--builder", "16"], "--builder `16`"),
+        (vec!["--format", "g10"], "built over b8, b12 and b16"),
+        (vec!["--format", "b9"], "--format b9"),
+    ] {
+        let mut a = vec!["--out", &out, "bundle-stream", "--scenes", "room"];
+        a.extend(&args);
+        let o = rtu(&a);
+        let err = String::from_utf8_lossy(&o.stderr);
+        assert!(!o.status.success(), "{args:?} must fail");
+        assert!(err.contains(want), "{args:?}: {err}");
+        assert!(o.stdout.is_empty(), "{args:?}");
+        assert!(d.entries().is_empty(), "{args:?}: {:?}", d.entries());
+    }
+}

@@ -45,6 +45,9 @@ pub struct JobTrees {
     pub jobs: Vec<TreeJob>,
     /// The model's busy-pair count: `1 + ceil(|active| / 2)` per split job, 1 per decided one.
     pub pair_cycles: u64,
+    /// Clocks the one-job processor (`rtl::bundle::split::BundleSplit`) takes for the same jobs back to
+    /// back: `rtl::bundle::split::split_clocks` of each, summed.
+    pub one_job_clocks: u64,
 }
 
 /// Records the traversal of every bundle of `built` (at most [`STREAM_RAYS`] rays each) on `bvh` with
@@ -94,6 +97,7 @@ pub fn job_trees(
             };
             let r = split_fix(bf, &fb, &boxes[node], &qr, active as u64);
             t.pair_cycles += r.pair_cycles as u64;
+            t.one_job_clocks += rtl::bundle::split::split_clocks(&r) as u64;
             let id = t.jobs.len();
             t.jobs.push(TreeJob {
                 bundle: k,
