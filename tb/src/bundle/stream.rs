@@ -371,3 +371,137 @@ where
     })?;
     Ok(ck.stats)
 }
+
+/// One job of a program for [`stream_shrinking`], in the terms proptest shrinks: smaller numbers and
+/// `None` are simpler jobs.
+#[derive(Clone, Debug)]
+pub struct StreamStep {
+    /// Seed of the job's BundleGen case: its bundle and box pair are the job's, its rays the set loaded.
+    pub case: u64,
+    /// The job's ray set.
+    pub set: u8,
+    /// Load this many rays (one less than the value) of the case into the set first, one a clock.
+    /// `None`: use what the set holds.
+    pub load: Option<u8>,
+    pub active: u16,
+    /// Clocks `start` is held high (1 + value): a start while not `ready` is refused, and one held
+    /// while `ready` is taken again.
+    pub hold: u8,
+    /// Idle clocks after it (0: the next job's start follows at once).
+    pub gap: u8,
+}
+
+/// Programs of 1 to 10 jobs.
+pub fn stream_program() -> impl proptest::strategy::Strategy<Value = Vec<StreamStep>> {
+    use proptest::prelude::*;
+    let step = (
+        any::<u64>(),
+        0..STREAM_SETS as u8,
+        proptest::option::of(0..STREAM_RAYS as u8),
+        prop_oneof![3 => any::<u16>(), 1 => Just(u16::MAX), 1 => (0..16u32).prop_map(|b| 1u16 << b)],
+        0..3u8,
+        0..4u8,
+    )
+        .prop_map(|(case, set, load, active, hold, gap)| StreamStep {
+            case,
+            set,
+            load,
+            active,
+            hold,
+            gap,
+        });
+    proptest::collection::vec(step, 1..=10)
+}
+
+/// The clocks of `program`, then enough idle clocks for every job to report.
+pub fn plan_stream(bf: &BundleFixFormat, program: &[StreamStep]) -> Vec<FixStreamIn> {
+    let map = campaign_map(bf.base);
+    let (lo, hi) = campaign_bounds();
+    let mut clocks = vec![];
+    for (k, step) in program.iter().enumerate() {
+        let mut gen = BundleGen::new(step.case, lo, hi, 0.6);
+        let mut case = || loop {
+            let c = if step.case % 8 == 0 {
+                gen.grid_one_ray(&map)
+            } else {
+                gen.next_case()
+            };
+            if let Some(q) = quantised_case(bf, &map, &c) {
+                return q;
+            }
+        };
+        let (bundle, boxes, mut rays) = case();
+        if let Some(n) = step.load {
+            let n = n as usize + 1;
+            while rays.len() < n {
+                rays.extend(case().2);
+            }
+            for (i, r) in rays.iter().take(n).enumerate() {
+                clocks.push(FixStreamIn {
+                    write: Some((step.set, i as u8, *r)),
+                    ..Default::default()
+                });
+            }
+        }
+        let job = StreamJob {
+            bundle,
+            boxes,
+            active: step.active,
+            set: step.set,
+            tag: k as u8,
+        };
+        for _ in 0..=step.hold {
+            clocks.push(FixStreamIn {
+                start: Some(job),
+                ..Default::default()
+            });
+        }
+        clocks.extend((0..step.gap).map(|_| FixStreamIn::default()));
+    }
+    clocks.extend((0..120).map(|_| FixStreamIn::default()));
+    clocks
+}
+
+/// proptest with shrinking for the streaming processor `S` ([`crate::prop::shrinking_check`]): `cases`
+/// programs ([`stream_program`]), each on a fresh block, checked clock by clock against `model()`; a
+/// failing program is shrunk, replayed with a VCD, and reported. Returns what the programs covered.
+pub fn stream_shrinking<S: BundleStreamIo>(
+    name: &str,
+    bf: BundleFixFormat,
+    cases: u32,
+    model: impl Fn() -> StreamModel<BundleFixFormat>,
+) -> StreamStats {
+    let mut total = StreamStats::default();
+    crate::prop::shrinking_check(
+        name,
+        cases,
+        stream_program(),
+        |program| {
+            let s = run_stream(
+                StreamChecker::with_model(model()),
+                &mut StreamRtl::<S>::new(&bf),
+                plan_stream(&bf, program),
+            )?;
+            total.taken += s.taken;
+            total.done += s.done;
+            total.split += s.split;
+            total.all_hit += s.all_hit;
+            total.all_miss += s.all_miss;
+            total.full_splits += s.full_splits;
+            total.overtakes += s.overtakes;
+            total.refused += s.refused;
+            total.clocks += s.clocks;
+            Ok(())
+        },
+        |program, path| {
+            let mut d = StreamRtl::<S>::new(&bf).vcd_to(path).expect("VCD");
+            let _ = run_stream(
+                StreamChecker::with_model(model()),
+                &mut d,
+                plan_stream(&bf, program),
+            );
+        },
+        |program| format!("job program {program:?}"),
+    );
+    total
+}

@@ -160,3 +160,51 @@ fn a_wrong_split_model_is_caught_shrunk_and_leaves_a_vcd() {
         );
     }
 }
+
+/// The streaming results processor on job programs (`tb::bundle::stream::stream_program`: ray sets
+/// loaded or reused, starts held through refusals and retaken, gaps or none), clock by clock against
+/// the clock model; a failing program is shrunk and written as a VCD.
+#[test]
+fn stream_b12_matches_model_shrinking() {
+    use tb::bundle::stream::{stream_model, stream_shrinking};
+    let bf = BundleFixFormat::presets()[1];
+    let s = with_big_stack(move || {
+        stream_shrinking::<rtl::BundleStreamB12>("bundle_stream_b12", bf, 300, || stream_model(&bf))
+    });
+    println!("bundle_stream_b12: {s:?}");
+    let j = s.done / 20;
+    assert!(
+        s.all_hit > j && s.all_miss > j && s.split > j && s.refused > j && s.overtakes > 0,
+        "every outcome, refused starts and reports out of order must occur: {s:?}"
+    );
+}
+
+/// A wrong stream model (the pair one clock slower) is caught, shrunk to a program of one job, and
+/// leaves a waveform with the block's `done`.
+#[test]
+fn a_wrong_stream_model_is_caught_shrunk_and_leaves_a_vcd() {
+    use golden::bundle::stream::StreamModel;
+    use tb::bundle::stream::stream_shrinking;
+    let bf = BundleFixFormat::presets()[1];
+    let msg = expect_caught("done", move || {
+        with_big_stack(move || {
+            stream_shrinking::<rtl::BundleStreamB12>(
+                "bundle_stream_b12_slow_pair",
+                bf,
+                300,
+                || StreamModel::new(bf, rtl::bundle::pair_fix::BUNDLE_FIX_LATENCY + 1),
+            );
+        })
+    });
+    let program = msg
+        .split("job program [")
+        .nth(1)
+        .expect("the shrunk program");
+    let jobs = program
+        .split('\n')
+        .next()
+        .unwrap()
+        .matches("StreamStep")
+        .count();
+    assert_eq!(jobs, 1, "not shrunk to one job: {msg}");
+}
