@@ -21,9 +21,10 @@
 //! # Cycles
 //! A bundle-box test costs one pair cycle, plus `ceil(|A| / 2)` when it splits; an early split costs
 //! `ceil(|A| / 2)` (the results processor's count, [`crate::bundle::split::split_cycles`]). These are cycles
-//! in which the pair is busy: the RTL results processor (`rtl::bundle::split`) runs one job at a time and
-//! waits out the pair's latency, so its clocks per job are more (4 for a decided job); keeping the pair busy
-//! with other jobs meanwhile is not built. Testing the rays one by one costs `|A|` cycles of a single-ray
+//! in which the pair is busy: the one-job RTL results processor (`rtl::bundle::split`) waits out the pair's
+//! latency, so its clocks per job are more (4 for a decided job); the streaming one
+//! (`rtl::bundle::stream`, model [`crate::bundle::stream`]) keeps other jobs in the pair meanwhile and
+//! comes within 1% of these cycles on the scenes' job streams (`rtu bundle-stream`). Testing the rays one by one costs `|A|` cycles of a single-ray
 //! tester (the yardstick) or `ceil(|A| / 2)` on the pair; [`BundleStats`] keeps both.
 
 use crate::bundle::build::{Built, SplitMetric};
