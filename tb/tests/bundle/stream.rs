@@ -202,3 +202,101 @@ fn stream_scene_jobs_replay_closed_loop_b12() {
         );
     }
 }
+
+/// In the waveform: decided jobs started on consecutive clocks each report (`done`) 4 clock edges after
+/// their start, one a clock, while `ready` stays high; then a split job of 16 rays holds `ready` low for
+/// its 8 pair clocks and reports no earlier than `2L + 3 + 8` edges after its start.
+#[test]
+fn stream_waveform_timing_b16() {
+    use golden::bundle::stream::StreamJob;
+    use rtl::bundle::stream::FixStreamIn;
+    let bf = preset(2);
+    let map = tb::campaign::campaign_map(bf.base);
+    let (lo, hi) = tb::campaign::campaign_bounds();
+    let mut gen = golden::bundle::gen::BundleGen::new(21, lo, hi, 0.6);
+    let mut model = tb::bundle::stream::stream_model(&bf);
+    // Three decided cases and one undecided case whose 16 rays split.
+    let (mut decided, mut undecided) = (vec![], None);
+    while decided.len() < 3 || undecided.is_none() {
+        let c = gen.next_case();
+        let Some((b, p, mut rays)) = tb::bundle::pair_fix::quantised_case(&bf, &map, &c) else {
+            continue;
+        };
+        use golden::bundle::stream::PairDatapath;
+        let (h, m) = bf.decide(&b, &p);
+        if h || m {
+            decided.push((b, p));
+        } else if undecided.is_none() {
+            while rays.len() < 16 {
+                rays.extend_from_within(..);
+            }
+            rays.truncate(16);
+            undecided = Some((b, p, rays));
+        }
+    }
+    let (ub, up, rays) = undecided.unwrap();
+    let mut stim: Vec<FixStreamIn> = rays
+        .iter()
+        .enumerate()
+        .map(|(i, r)| FixStreamIn {
+            write: Some((1, i as u8, *r)),
+            ..Default::default()
+        })
+        .collect();
+    let job = |b, p, active, tag| FixStreamIn {
+        start: Some(StreamJob {
+            bundle: b,
+            boxes: p,
+            active,
+            set: 1,
+            tag,
+        }),
+        ..Default::default()
+    };
+    for (k, (b, p)) in decided.iter().enumerate() {
+        stim.push(job(*b, *p, 0xffff, k as u8));
+    }
+    stim.extend((0..6).map(|_| FixStreamIn::default()));
+    stim.push(job(ub, up, 0xffff, 9));
+    stim.extend((0..40).map(|_| FixStreamIn::default()));
+    let path = tb::out_dir()
+        .join("vcd")
+        .join("bundle_stream_b16_timing.vcd");
+    {
+        let mut dut = StreamRtl::<rtl::BundleStreamB16>::new(&bf)
+            .vcd_to(&path)
+            .unwrap();
+        for input in &stim {
+            let got = dut.step(input);
+            model.step(input);
+            assert_eq!(got, model.outputs());
+        }
+    }
+    let trace = tb::vcd_read::read_trace(&path, &["start", "done", "ready"]).unwrap();
+    let (starts, dones) = (trace.rises("start"), trace.rises("done"));
+    // The three decided starts are one rise (start held high three clocks); the split job's is the second.
+    assert_eq!(starts.len(), 2, "{starts:?}");
+    assert_eq!(
+        dones.len(),
+        2,
+        "done pulses merge for consecutive reports: {dones:?}"
+    );
+    assert_eq!(
+        trace.edges_between(starts[0], dones[0]),
+        4,
+        "decided: L + 1"
+    );
+    let split = trace.edges_between(starts[1], dones[1]);
+    let l = BUNDLE_FIX_LATENCY;
+    assert!(
+        split >= 2 * l + 3 + 8,
+        "split job reported after {split} edges"
+    );
+    // ready falls once, for the split job's eight pair clocks.
+    let falls = trace.rises("ready").len();
+    assert_eq!(
+        falls, 2,
+        "ready rises at time 0 and after the split job's rays"
+    );
+    println!("decided: 4 edges; split of 16 rays: {split} edges");
+}
