@@ -9,6 +9,7 @@
 //! | [`pair_float::BundleFloat`] | `bundle/pair_float.rs` | the float pair, `golden::bundle::float::decide_float` |
 //! | [`split::BundleSplit`] | `bundle/split.rs` | the results processor, `golden::bundle::split` |
 //! | [`stream::BundleStream`] | `bundle/stream.rs` | the results processor with jobs in flight, `golden::bundle::stream` |
+//! | [`ray_store::RayStore`] | `bundle/ray_store.rs` | the two-bank ray store of both processors |
 //!
 //! Which configurations exist: [`registry`].
 
@@ -19,6 +20,7 @@ pub mod edge_le;
 pub mod fold_diff;
 pub mod pair_fix;
 pub mod pair_float;
+pub mod ray_store;
 pub mod registry;
 pub mod split;
 pub mod stream;

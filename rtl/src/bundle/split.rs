@@ -52,7 +52,7 @@
 //! here).
 //!
 //! # Structure
-//! The ray store is two copies of 16 words (banks A and B, written together), each field a
+//! The ray store ([`RayStore`]) is two copies of 16 words (banks A and B, written together), each field a
 //! `rust_hdl::widgets::ramrom::ram::RAM` (synchronous read and write, one clock read latency: block RAM or
 //! LUT RAM in synthesis): bank A feeds the pair's bundle ports (ray A), bank B its ray B ports, so any two
 //! rays are read in one clock. The remaining-ray mask `rem_q` gives the next two rays by isolating its
@@ -63,6 +63,7 @@
 //! no combinational path through the pair (Verilator UNOPTFLAT).
 
 use crate::bundle::pair_fix::{BundleFix, BUNDLE_FIX_LATENCY};
+use crate::bundle::ray_store::RayStore;
 use crate::export::verilog_named;
 use crate::slab::fix::{code, TAG_BITS};
 use golden::bundle::edge::BoxPair;
@@ -134,16 +135,7 @@ pub struct BundleSplit<const G: usize, const V: usize, const D: usize, const T: 
     pub clocks: Signal<Out, Bits<8>>,
     // the pair and the ray store (bank A: ray A, bank B: ray B)
     pair: BundleFix<G, V, D, T>,
-    a_o_lo: [RAM<Bits<G>, SPLIT_ADDR_BITS>; 3],
-    a_o_hi: [RAM<Bits<G>, SPLIT_ADDR_BITS>; 3],
-    a_d_lo: [RAM<Bits<D>, SPLIT_ADDR_BITS>; 3],
-    a_d_hi: [RAM<Bits<D>, SPLIT_ADDR_BITS>; 3],
-    a_t: RAM<Bits<T>, SPLIT_ADDR_BITS>,
-    b_o_lo: [RAM<Bits<G>, SPLIT_ADDR_BITS>; 3],
-    b_o_hi: [RAM<Bits<G>, SPLIT_ADDR_BITS>; 3],
-    b_d_lo: [RAM<Bits<D>, SPLIT_ADDR_BITS>; 3],
-    b_d_hi: [RAM<Bits<D>, SPLIT_ADDR_BITS>; 3],
-    b_t: RAM<Bits<T>, SPLIT_ADDR_BITS>,
+    store: RayStore<G, D, T, SPLIT_ADDR_BITS>,
     // constants
     one16: Constant<Bits<SPLIT_RAYS>>,
     zero16: Constant<Bits<SPLIT_RAYS>>,
@@ -244,16 +236,7 @@ impl<const G: usize, const V: usize, const D: usize, const T: usize> BundleSplit
             cycles: Default::default(),
             clocks: Default::default(),
             pair: BundleFix::new(bf),
-            a_o_lo: Default::default(),
-            a_o_hi: Default::default(),
-            a_d_lo: Default::default(),
-            a_d_hi: Default::default(),
-            a_t: Default::default(),
-            b_o_lo: Default::default(),
-            b_o_hi: Default::default(),
-            b_d_lo: Default::default(),
-            b_d_hi: Default::default(),
-            b_t: Default::default(),
+            store: Default::default(),
             one16: Constant::new(bits(1)),
             zero16: Constant::new(bits(0)),
             one8: Constant::new(bits(1)),
@@ -345,58 +328,16 @@ impl<const G: usize, const V: usize, const D: usize, const T: usize> Logic
 
         // The ray store: both banks written together (bank A is read at addr_a, bank B at addr_b, below:
         // a local is read only after it is written, or rust-hdl reports a logic loop).
+        self.store.clock.next = self.clock.val();
+        self.store.we.next = self.ray_we.val();
+        self.store.waddr.next = self.ray_addr.val();
+        self.store.w_t.next = self.ray_t.val();
         for i in 0..3 {
-            self.a_o_lo[i].read_clock.next = self.clock.val();
-            self.a_o_lo[i].write_clock.next = self.clock.val();
-            self.a_o_lo[i].write_enable.next = self.ray_we.val();
-            self.a_o_lo[i].write_address.next = self.ray_addr.val();
-            self.a_o_lo[i].write_data.next = self.ray_o_lo[i].val();
-            self.a_o_hi[i].read_clock.next = self.clock.val();
-            self.a_o_hi[i].write_clock.next = self.clock.val();
-            self.a_o_hi[i].write_enable.next = self.ray_we.val();
-            self.a_o_hi[i].write_address.next = self.ray_addr.val();
-            self.a_o_hi[i].write_data.next = self.ray_o_hi[i].val();
-            self.a_d_lo[i].read_clock.next = self.clock.val();
-            self.a_d_lo[i].write_clock.next = self.clock.val();
-            self.a_d_lo[i].write_enable.next = self.ray_we.val();
-            self.a_d_lo[i].write_address.next = self.ray_addr.val();
-            self.a_d_lo[i].write_data.next = self.ray_d_lo[i].val();
-            self.a_d_hi[i].read_clock.next = self.clock.val();
-            self.a_d_hi[i].write_clock.next = self.clock.val();
-            self.a_d_hi[i].write_enable.next = self.ray_we.val();
-            self.a_d_hi[i].write_address.next = self.ray_addr.val();
-            self.a_d_hi[i].write_data.next = self.ray_d_hi[i].val();
-            self.b_o_lo[i].read_clock.next = self.clock.val();
-            self.b_o_lo[i].write_clock.next = self.clock.val();
-            self.b_o_lo[i].write_enable.next = self.ray_we.val();
-            self.b_o_lo[i].write_address.next = self.ray_addr.val();
-            self.b_o_lo[i].write_data.next = self.ray_o_lo[i].val();
-            self.b_o_hi[i].read_clock.next = self.clock.val();
-            self.b_o_hi[i].write_clock.next = self.clock.val();
-            self.b_o_hi[i].write_enable.next = self.ray_we.val();
-            self.b_o_hi[i].write_address.next = self.ray_addr.val();
-            self.b_o_hi[i].write_data.next = self.ray_o_hi[i].val();
-            self.b_d_lo[i].read_clock.next = self.clock.val();
-            self.b_d_lo[i].write_clock.next = self.clock.val();
-            self.b_d_lo[i].write_enable.next = self.ray_we.val();
-            self.b_d_lo[i].write_address.next = self.ray_addr.val();
-            self.b_d_lo[i].write_data.next = self.ray_d_lo[i].val();
-            self.b_d_hi[i].read_clock.next = self.clock.val();
-            self.b_d_hi[i].write_clock.next = self.clock.val();
-            self.b_d_hi[i].write_enable.next = self.ray_we.val();
-            self.b_d_hi[i].write_address.next = self.ray_addr.val();
-            self.b_d_hi[i].write_data.next = self.ray_d_hi[i].val();
+            self.store.w_o_lo[i].next = self.ray_o_lo[i].val();
+            self.store.w_o_hi[i].next = self.ray_o_hi[i].val();
+            self.store.w_d_lo[i].next = self.ray_d_lo[i].val();
+            self.store.w_d_hi[i].next = self.ray_d_hi[i].val();
         }
-        self.a_t.read_clock.next = self.clock.val();
-        self.a_t.write_clock.next = self.clock.val();
-        self.a_t.write_enable.next = self.ray_we.val();
-        self.a_t.write_address.next = self.ray_addr.val();
-        self.a_t.write_data.next = self.ray_t.val();
-        self.b_t.read_clock.next = self.clock.val();
-        self.b_t.write_clock.next = self.clock.val();
-        self.b_t.write_enable.next = self.ray_we.val();
-        self.b_t.write_address.next = self.ray_addr.val();
-        self.b_t.write_data.next = self.ray_t.val();
 
         // The pair's inputs, from ports, registers and the ray store only: the bundle in the start
         // clock, a pair of rays when issue_q.
@@ -405,28 +346,28 @@ impl<const G: usize, const V: usize, const D: usize, const T: usize> Logic
         self.pair.t_lo.next = self.t_lo.val();
         if self.issue_q.q.val() {
             self.pair.tag_in.next = self.issue_tag_q.q.val();
-            self.pair.t_hi.next = self.a_t.read_data.val();
+            self.pair.t_hi.next = self.store.a_t.val();
         } else {
             self.pair.tag_in.next = self.zero16.val();
             self.pair.t_hi.next = self.t_hi.val();
         }
-        self.pair.r_t.next = self.b_t.read_data.val();
+        self.pair.r_t.next = self.store.b_t.val();
         for i in 0..3 {
             if self.issue_q.q.val() {
-                self.pair.o_lo[i].next = self.a_o_lo[i].read_data.val();
-                self.pair.o_hi[i].next = self.a_o_hi[i].read_data.val();
-                self.pair.d_lo[i].next = self.a_d_lo[i].read_data.val();
-                self.pair.d_hi[i].next = self.a_d_hi[i].read_data.val();
+                self.pair.o_lo[i].next = self.store.a_o_lo[i].val();
+                self.pair.o_hi[i].next = self.store.a_o_hi[i].val();
+                self.pair.d_lo[i].next = self.store.a_d_lo[i].val();
+                self.pair.d_hi[i].next = self.store.a_d_hi[i].val();
             } else {
                 self.pair.o_lo[i].next = self.o_lo[i].val();
                 self.pair.o_hi[i].next = self.o_hi[i].val();
                 self.pair.d_lo[i].next = self.d_lo[i].val();
                 self.pair.d_hi[i].next = self.d_hi[i].val();
             }
-            self.pair.r_o_lo[i].next = self.b_o_lo[i].read_data.val();
-            self.pair.r_o_hi[i].next = self.b_o_hi[i].read_data.val();
-            self.pair.r_d_lo[i].next = self.b_d_lo[i].read_data.val();
-            self.pair.r_d_hi[i].next = self.b_d_hi[i].read_data.val();
+            self.pair.r_o_lo[i].next = self.store.b_o_lo[i].val();
+            self.pair.r_o_hi[i].next = self.store.b_o_hi[i].val();
+            self.pair.r_d_lo[i].next = self.store.b_d_lo[i].val();
+            self.pair.r_d_hi[i].next = self.store.b_d_hi[i].val();
             self.pair.in_lo[i].next = self.in_lo[i].val();
             self.pair.in_hi[i].next = self.in_hi[i].val();
             if self.busy_q.q.val() {
@@ -457,18 +398,8 @@ impl<const G: usize, const V: usize, const D: usize, const T: usize> Logic
                 self.tag_bb.next = self.tag_bk[k].val();
             }
         }
-        for i in 0..3 {
-            self.a_o_lo[i].read_address.next = self.addr_a.val();
-            self.a_o_hi[i].read_address.next = self.addr_a.val();
-            self.a_d_lo[i].read_address.next = self.addr_a.val();
-            self.a_d_hi[i].read_address.next = self.addr_a.val();
-            self.b_o_lo[i].read_address.next = self.addr_b.val();
-            self.b_o_hi[i].read_address.next = self.addr_b.val();
-            self.b_d_lo[i].read_address.next = self.addr_b.val();
-            self.b_d_hi[i].read_address.next = self.addr_b.val();
-        }
-        self.a_t.read_address.next = self.addr_a.val();
-        self.b_t.read_address.next = self.addr_b.val();
+        self.store.addr_a.next = self.addr_a.val();
+        self.store.addr_b.next = self.addr_b.val();
         if self.hot_b.val().any() {
             if self.rem_next.val().any() {
                 self.tag_flags.next = self.tag_ray.val() | self.tag_b.val();

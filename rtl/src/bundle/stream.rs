@@ -56,6 +56,7 @@
 //! the pair, and `ready` needs `resv_q < STREAM_QUEUE`, so the queue cannot overflow.
 
 use crate::bundle::pair_fix::{BundleFix, BUNDLE_FIX_LATENCY};
+use crate::bundle::ray_store::RayStore;
 use crate::delay::Delay3;
 use crate::export::verilog_named;
 use crate::slab::fix::{code, TAG_BITS};
@@ -123,16 +124,7 @@ pub struct BundleStream<const G: usize, const V: usize, const D: usize, const T:
     pub mask: Signal<Out, Bits<STREAM_RAYS>>,
     // the pair and the ray store (bank A: ray A, bank B: ray B)
     pair: BundleFix<G, V, D, T>,
-    a_o_lo: [RAM<Bits<G>, STREAM_ADDR_BITS>; 3],
-    a_o_hi: [RAM<Bits<G>, STREAM_ADDR_BITS>; 3],
-    a_d_lo: [RAM<Bits<D>, STREAM_ADDR_BITS>; 3],
-    a_d_hi: [RAM<Bits<D>, STREAM_ADDR_BITS>; 3],
-    a_t: RAM<Bits<T>, STREAM_ADDR_BITS>,
-    b_o_lo: [RAM<Bits<G>, STREAM_ADDR_BITS>; 3],
-    b_o_hi: [RAM<Bits<G>, STREAM_ADDR_BITS>; 3],
-    b_d_lo: [RAM<Bits<D>, STREAM_ADDR_BITS>; 3],
-    b_d_hi: [RAM<Bits<D>, STREAM_ADDR_BITS>; 3],
-    b_t: RAM<Bits<T>, STREAM_ADDR_BITS>,
+    store: RayStore<G, D, T, STREAM_ADDR_BITS>,
     // the delay line beside the pair
     l_tag: Delay3<Bits<STREAM_TAG_BITS>>,
     l_active: Delay3<Bits<STREAM_RAYS>>,
@@ -263,16 +255,7 @@ impl<const G: usize, const V: usize, const D: usize, const T: usize> BundleStrea
             split: Default::default(),
             mask: Default::default(),
             pair: BundleFix::new(bf),
-            a_o_lo: Default::default(),
-            a_o_hi: Default::default(),
-            a_d_lo: Default::default(),
-            a_d_hi: Default::default(),
-            a_t: Default::default(),
-            b_o_lo: Default::default(),
-            b_o_hi: Default::default(),
-            b_d_lo: Default::default(),
-            b_d_hi: Default::default(),
-            b_t: Default::default(),
+            store: Default::default(),
             l_tag: Default::default(),
             l_active: Default::default(),
             l_set: Default::default(),
@@ -410,58 +393,16 @@ impl<const G: usize, const V: usize, const D: usize, const T: usize> Logic
         );
 
         // The ray store: both banks written together (read below, after the addresses are formed).
+        self.store.clock.next = self.clock.val();
+        self.store.we.next = self.ray_we.val();
+        self.store.waddr.next = self.ray_addr.val();
+        self.store.w_t.next = self.ray_t.val();
         for i in 0..3 {
-            self.a_o_lo[i].read_clock.next = self.clock.val();
-            self.a_o_lo[i].write_clock.next = self.clock.val();
-            self.a_o_lo[i].write_enable.next = self.ray_we.val();
-            self.a_o_lo[i].write_address.next = self.ray_addr.val();
-            self.a_o_lo[i].write_data.next = self.ray_o_lo[i].val();
-            self.a_o_hi[i].read_clock.next = self.clock.val();
-            self.a_o_hi[i].write_clock.next = self.clock.val();
-            self.a_o_hi[i].write_enable.next = self.ray_we.val();
-            self.a_o_hi[i].write_address.next = self.ray_addr.val();
-            self.a_o_hi[i].write_data.next = self.ray_o_hi[i].val();
-            self.a_d_lo[i].read_clock.next = self.clock.val();
-            self.a_d_lo[i].write_clock.next = self.clock.val();
-            self.a_d_lo[i].write_enable.next = self.ray_we.val();
-            self.a_d_lo[i].write_address.next = self.ray_addr.val();
-            self.a_d_lo[i].write_data.next = self.ray_d_lo[i].val();
-            self.a_d_hi[i].read_clock.next = self.clock.val();
-            self.a_d_hi[i].write_clock.next = self.clock.val();
-            self.a_d_hi[i].write_enable.next = self.ray_we.val();
-            self.a_d_hi[i].write_address.next = self.ray_addr.val();
-            self.a_d_hi[i].write_data.next = self.ray_d_hi[i].val();
-            self.b_o_lo[i].read_clock.next = self.clock.val();
-            self.b_o_lo[i].write_clock.next = self.clock.val();
-            self.b_o_lo[i].write_enable.next = self.ray_we.val();
-            self.b_o_lo[i].write_address.next = self.ray_addr.val();
-            self.b_o_lo[i].write_data.next = self.ray_o_lo[i].val();
-            self.b_o_hi[i].read_clock.next = self.clock.val();
-            self.b_o_hi[i].write_clock.next = self.clock.val();
-            self.b_o_hi[i].write_enable.next = self.ray_we.val();
-            self.b_o_hi[i].write_address.next = self.ray_addr.val();
-            self.b_o_hi[i].write_data.next = self.ray_o_hi[i].val();
-            self.b_d_lo[i].read_clock.next = self.clock.val();
-            self.b_d_lo[i].write_clock.next = self.clock.val();
-            self.b_d_lo[i].write_enable.next = self.ray_we.val();
-            self.b_d_lo[i].write_address.next = self.ray_addr.val();
-            self.b_d_lo[i].write_data.next = self.ray_d_lo[i].val();
-            self.b_d_hi[i].read_clock.next = self.clock.val();
-            self.b_d_hi[i].write_clock.next = self.clock.val();
-            self.b_d_hi[i].write_enable.next = self.ray_we.val();
-            self.b_d_hi[i].write_address.next = self.ray_addr.val();
-            self.b_d_hi[i].write_data.next = self.ray_d_hi[i].val();
+            self.store.w_o_lo[i].next = self.ray_o_lo[i].val();
+            self.store.w_o_hi[i].next = self.ray_o_hi[i].val();
+            self.store.w_d_lo[i].next = self.ray_d_lo[i].val();
+            self.store.w_d_hi[i].next = self.ray_d_hi[i].val();
         }
-        self.a_t.read_clock.next = self.clock.val();
-        self.a_t.write_clock.next = self.clock.val();
-        self.a_t.write_enable.next = self.ray_we.val();
-        self.a_t.write_address.next = self.ray_addr.val();
-        self.a_t.write_data.next = self.ray_t.val();
-        self.b_t.read_clock.next = self.clock.val();
-        self.b_t.write_clock.next = self.clock.val();
-        self.b_t.write_enable.next = self.ray_we.val();
-        self.b_t.write_address.next = self.ray_addr.val();
-        self.b_t.write_data.next = self.ray_t.val();
 
         // Taking a job: no ray pair this clock and room in the split queue for every bundle in flight.
         self.ready_l.next = !self.issue_q.q.val() & (self.resv_q.q.val() < self.full_c.val());
@@ -474,18 +415,18 @@ impl<const G: usize, const V: usize, const D: usize, const T: usize> Logic
         self.pair.t_lo.next = self.t_lo.val();
         if self.issue_q.q.val() {
             self.pair.tag_in.next = self.issue_tag_q.q.val();
-            self.pair.t_hi.next = self.a_t.read_data.val();
+            self.pair.t_hi.next = self.store.a_t.val();
         } else {
             self.pair.tag_in.next = self.zero_tag.val();
             self.pair.t_hi.next = self.t_hi.val();
         }
-        self.pair.r_t.next = self.b_t.read_data.val();
+        self.pair.r_t.next = self.store.b_t.val();
         for i in 0..3 {
             if self.issue_q.q.val() {
-                self.pair.o_lo[i].next = self.a_o_lo[i].read_data.val();
-                self.pair.o_hi[i].next = self.a_o_hi[i].read_data.val();
-                self.pair.d_lo[i].next = self.a_d_lo[i].read_data.val();
-                self.pair.d_hi[i].next = self.a_d_hi[i].read_data.val();
+                self.pair.o_lo[i].next = self.store.a_o_lo[i].val();
+                self.pair.o_hi[i].next = self.store.a_o_hi[i].val();
+                self.pair.d_lo[i].next = self.store.a_d_lo[i].val();
+                self.pair.d_hi[i].next = self.store.a_d_hi[i].val();
                 self.pair.out_lo[i].next = self.issue_lo_q[i].q.val();
                 self.pair.out_hi[i].next = self.issue_hi_q[i].q.val();
             } else {
@@ -496,10 +437,10 @@ impl<const G: usize, const V: usize, const D: usize, const T: usize> Logic
                 self.pair.out_lo[i].next = self.out_lo[i].val();
                 self.pair.out_hi[i].next = self.out_hi[i].val();
             }
-            self.pair.r_o_lo[i].next = self.b_o_lo[i].read_data.val();
-            self.pair.r_o_hi[i].next = self.b_o_hi[i].read_data.val();
-            self.pair.r_d_lo[i].next = self.b_d_lo[i].read_data.val();
-            self.pair.r_d_hi[i].next = self.b_d_hi[i].read_data.val();
+            self.pair.r_o_lo[i].next = self.store.b_o_lo[i].val();
+            self.pair.r_o_hi[i].next = self.store.b_o_hi[i].val();
+            self.pair.r_d_lo[i].next = self.store.b_d_lo[i].val();
+            self.pair.r_d_hi[i].next = self.store.b_d_hi[i].val();
             self.pair.in_lo[i].next = self.in_lo[i].val();
             self.pair.in_hi[i].next = self.in_hi[i].val();
         }
@@ -586,18 +527,8 @@ impl<const G: usize, const V: usize, const D: usize, const T: usize> Logic
                 self.tag_bb.next = self.tag_bk[k].val();
             }
         }
-        for i in 0..3 {
-            self.a_o_lo[i].read_address.next = self.addr_a.val();
-            self.a_o_hi[i].read_address.next = self.addr_a.val();
-            self.a_d_lo[i].read_address.next = self.addr_a.val();
-            self.a_d_hi[i].read_address.next = self.addr_a.val();
-            self.b_o_lo[i].read_address.next = self.addr_b.val();
-            self.b_o_hi[i].read_address.next = self.addr_b.val();
-            self.b_d_lo[i].read_address.next = self.addr_b.val();
-            self.b_d_hi[i].read_address.next = self.addr_b.val();
-        }
-        self.a_t.read_address.next = self.addr_a.val();
-        self.b_t.read_address.next = self.addr_b.val();
+        self.store.addr_a.next = self.addr_a.val();
+        self.store.addr_b.next = self.addr_b.val();
         if self.hot_b.val().any() {
             if self.rem_next.val().any() {
                 self.tag_flags.next = self.tag_ray.val() | self.tag_b.val();

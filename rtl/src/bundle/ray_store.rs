@@ -1,0 +1,130 @@
+//! `RayStore`: the ray store of the results processors, two banks of `2^A` rays (written together, one
+//! ray a clock), so that any two rays are read in one clock: bank A at `addr_a`, bank B at `addr_b`.
+//! Each field is a `rust_hdl::widgets::ramrom::ram::RAM` (synchronous read and write, one clock of read
+//! latency, read before write: a read and a write of the same entry in one clock read the old ray),
+//! block RAM or LUT RAM in synthesis. A ray is a quantised tiny bundle (`golden::bundle::fix::FixBundle`):
+//! origin and direction floored and ceiled, and its `t_hi` (its `t_lo` is not needed in two-ray mode).
+//!
+//! # Inputs
+//! `clock`; write port `we`, `waddr`, `w_o_lo`, `w_o_hi`, `w_d_lo`, `w_d_hi` (arrays over x, y, z),
+//! `w_t` (written at the end of the clock); read addresses `addr_a`, `addr_b`.
+//! # Outputs
+//! `a_o_lo` .. `a_t`: bank A's entry `addr_a` of the previous clock; `b_o_lo` .. `b_t`: bank B's at
+//! `addr_b`.
+
+use rust_hdl::prelude::*;
+
+/// The two-bank ray store; see the module documentation.
+#[derive(LogicBlock, Default)]
+pub struct RayStore<const G: usize, const D: usize, const T: usize, const A: usize> {
+    pub clock: Signal<In, Clock>,
+    pub we: Signal<In, Bit>,
+    pub waddr: Signal<In, Bits<A>>,
+    pub w_o_lo: [Signal<In, Bits<G>>; 3],
+    pub w_o_hi: [Signal<In, Bits<G>>; 3],
+    pub w_d_lo: [Signal<In, Bits<D>>; 3],
+    pub w_d_hi: [Signal<In, Bits<D>>; 3],
+    pub w_t: Signal<In, Bits<T>>,
+    pub addr_a: Signal<In, Bits<A>>,
+    pub addr_b: Signal<In, Bits<A>>,
+    pub a_o_lo: [Signal<Out, Bits<G>>; 3],
+    pub a_o_hi: [Signal<Out, Bits<G>>; 3],
+    pub a_d_lo: [Signal<Out, Bits<D>>; 3],
+    pub a_d_hi: [Signal<Out, Bits<D>>; 3],
+    pub a_t: Signal<Out, Bits<T>>,
+    pub b_o_lo: [Signal<Out, Bits<G>>; 3],
+    pub b_o_hi: [Signal<Out, Bits<G>>; 3],
+    pub b_d_lo: [Signal<Out, Bits<D>>; 3],
+    pub b_d_hi: [Signal<Out, Bits<D>>; 3],
+    pub b_t: Signal<Out, Bits<T>>,
+    ra_o_lo: [RAM<Bits<G>, A>; 3],
+    ra_o_hi: [RAM<Bits<G>, A>; 3],
+    ra_d_lo: [RAM<Bits<D>, A>; 3],
+    ra_d_hi: [RAM<Bits<D>, A>; 3],
+    ra_t: RAM<Bits<T>, A>,
+    rb_o_lo: [RAM<Bits<G>, A>; 3],
+    rb_o_hi: [RAM<Bits<G>, A>; 3],
+    rb_d_lo: [RAM<Bits<D>, A>; 3],
+    rb_d_hi: [RAM<Bits<D>, A>; 3],
+    rb_t: RAM<Bits<T>, A>,
+}
+
+impl<const G: usize, const D: usize, const T: usize, const A: usize> Logic
+    for RayStore<G, D, T, A>
+{
+    #[hdl_gen]
+    fn update(&mut self) {
+        for i in 0..3 {
+            self.ra_o_lo[i].read_clock.next = self.clock.val();
+            self.ra_o_lo[i].write_clock.next = self.clock.val();
+            self.ra_o_lo[i].write_enable.next = self.we.val();
+            self.ra_o_lo[i].write_address.next = self.waddr.val();
+            self.ra_o_lo[i].write_data.next = self.w_o_lo[i].val();
+            self.ra_o_lo[i].read_address.next = self.addr_a.val();
+            self.a_o_lo[i].next = self.ra_o_lo[i].read_data.val();
+            self.ra_o_hi[i].read_clock.next = self.clock.val();
+            self.ra_o_hi[i].write_clock.next = self.clock.val();
+            self.ra_o_hi[i].write_enable.next = self.we.val();
+            self.ra_o_hi[i].write_address.next = self.waddr.val();
+            self.ra_o_hi[i].write_data.next = self.w_o_hi[i].val();
+            self.ra_o_hi[i].read_address.next = self.addr_a.val();
+            self.a_o_hi[i].next = self.ra_o_hi[i].read_data.val();
+            self.ra_d_lo[i].read_clock.next = self.clock.val();
+            self.ra_d_lo[i].write_clock.next = self.clock.val();
+            self.ra_d_lo[i].write_enable.next = self.we.val();
+            self.ra_d_lo[i].write_address.next = self.waddr.val();
+            self.ra_d_lo[i].write_data.next = self.w_d_lo[i].val();
+            self.ra_d_lo[i].read_address.next = self.addr_a.val();
+            self.a_d_lo[i].next = self.ra_d_lo[i].read_data.val();
+            self.ra_d_hi[i].read_clock.next = self.clock.val();
+            self.ra_d_hi[i].write_clock.next = self.clock.val();
+            self.ra_d_hi[i].write_enable.next = self.we.val();
+            self.ra_d_hi[i].write_address.next = self.waddr.val();
+            self.ra_d_hi[i].write_data.next = self.w_d_hi[i].val();
+            self.ra_d_hi[i].read_address.next = self.addr_a.val();
+            self.a_d_hi[i].next = self.ra_d_hi[i].read_data.val();
+            self.rb_o_lo[i].read_clock.next = self.clock.val();
+            self.rb_o_lo[i].write_clock.next = self.clock.val();
+            self.rb_o_lo[i].write_enable.next = self.we.val();
+            self.rb_o_lo[i].write_address.next = self.waddr.val();
+            self.rb_o_lo[i].write_data.next = self.w_o_lo[i].val();
+            self.rb_o_lo[i].read_address.next = self.addr_b.val();
+            self.b_o_lo[i].next = self.rb_o_lo[i].read_data.val();
+            self.rb_o_hi[i].read_clock.next = self.clock.val();
+            self.rb_o_hi[i].write_clock.next = self.clock.val();
+            self.rb_o_hi[i].write_enable.next = self.we.val();
+            self.rb_o_hi[i].write_address.next = self.waddr.val();
+            self.rb_o_hi[i].write_data.next = self.w_o_hi[i].val();
+            self.rb_o_hi[i].read_address.next = self.addr_b.val();
+            self.b_o_hi[i].next = self.rb_o_hi[i].read_data.val();
+            self.rb_d_lo[i].read_clock.next = self.clock.val();
+            self.rb_d_lo[i].write_clock.next = self.clock.val();
+            self.rb_d_lo[i].write_enable.next = self.we.val();
+            self.rb_d_lo[i].write_address.next = self.waddr.val();
+            self.rb_d_lo[i].write_data.next = self.w_d_lo[i].val();
+            self.rb_d_lo[i].read_address.next = self.addr_b.val();
+            self.b_d_lo[i].next = self.rb_d_lo[i].read_data.val();
+            self.rb_d_hi[i].read_clock.next = self.clock.val();
+            self.rb_d_hi[i].write_clock.next = self.clock.val();
+            self.rb_d_hi[i].write_enable.next = self.we.val();
+            self.rb_d_hi[i].write_address.next = self.waddr.val();
+            self.rb_d_hi[i].write_data.next = self.w_d_hi[i].val();
+            self.rb_d_hi[i].read_address.next = self.addr_b.val();
+            self.b_d_hi[i].next = self.rb_d_hi[i].read_data.val();
+        }
+        self.ra_t.read_clock.next = self.clock.val();
+        self.ra_t.write_clock.next = self.clock.val();
+        self.ra_t.write_enable.next = self.we.val();
+        self.ra_t.write_address.next = self.waddr.val();
+        self.ra_t.write_data.next = self.w_t.val();
+        self.ra_t.read_address.next = self.addr_a.val();
+        self.a_t.next = self.ra_t.read_data.val();
+        self.rb_t.read_clock.next = self.clock.val();
+        self.rb_t.write_clock.next = self.clock.val();
+        self.rb_t.write_enable.next = self.we.val();
+        self.rb_t.write_address.next = self.waddr.val();
+        self.rb_t.write_data.next = self.w_t.val();
+        self.rb_t.read_address.next = self.addr_b.val();
+        self.b_t.next = self.rb_t.read_data.val();
+    }
+}
