@@ -128,3 +128,41 @@ impl<const G: usize, const D: usize, const T: usize, const A: usize> Logic
         self.b_t.next = self.rb_t.read_data.val();
     }
 }
+
+/// The value of a stored-ray or job input port shared by the results processors (`ray_o_lo` .. `ray_t`,
+/// `o_lo` .. `t_hi`, `in_lo` .. `out_hi`), by base name and axis, for a processor over `bf`: `ray` is the
+/// ray on the write port, `bundle` and `boxes` the job's. `None` for any other port.
+pub fn ray_job_word(
+    bf: &golden::bundle::fix::BundleFixFormat,
+    base: &str,
+    axis: usize,
+    ray: &golden::bundle::fix::FixBundle,
+    bundle: &golden::bundle::fix::FixBundle,
+    boxes: &golden::bundle::edge::BoxPair<golden::format::fixed::FixBox>,
+) -> Option<u64> {
+    use crate::slab::fix::code;
+    let (g, d, t) = (
+        bf.base.g as usize,
+        bf.dir_bits() as usize,
+        bf.base.t as usize,
+    );
+    let (r, b, i) = (ray, bundle, axis);
+    Some(match base {
+        "ray_o_lo" => code(r.o_lo[i], g),
+        "ray_o_hi" => code(r.o_hi[i], g),
+        "ray_d_lo" => code(r.d_lo[i], d),
+        "ray_d_hi" => code(r.d_hi[i], d),
+        "ray_t" => code(r.t_hi, t),
+        "o_lo" => code(b.o_lo[i], g),
+        "o_hi" => code(b.o_hi[i], g),
+        "d_lo" => code(b.d_lo[i], d),
+        "d_hi" => code(b.d_hi[i], d),
+        "t_lo" => code(b.t_lo, t),
+        "t_hi" => code(b.t_hi, t),
+        "in_lo" => code(boxes.inner.lo[i], g),
+        "in_hi" => code(boxes.inner.hi[i], g),
+        "out_lo" => code(boxes.outer.lo[i], g),
+        "out_hi" => code(boxes.outer.hi[i], g),
+        _ => return None,
+    })
+}

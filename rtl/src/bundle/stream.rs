@@ -56,7 +56,7 @@
 //! the pair, and `ready` needs `resv_q < STREAM_QUEUE`, so the queue cannot overflow.
 
 use crate::bundle::pair_fix::{BundleFix, BUNDLE_FIX_LATENCY};
-use crate::bundle::ray_store::RayStore;
+use crate::bundle::ray_store::{ray_job_word, RayStore};
 use crate::delay::Delay3;
 use crate::export::verilog_named;
 use crate::slab::fix::{code, TAG_BITS};
@@ -736,39 +736,17 @@ pub fn stream_out_word(o: &StreamOut, port: &str) -> Option<u64> {
 /// over `bf`.
 pub fn stream_in_word(bf: &BundleFixFormat, port: &str, input: &FixStreamIn) -> Option<u64> {
     let (base, idx) = crate::export::split_port(port);
-    let idx = idx.unwrap_or(0);
-    let (g, d, t) = (
-        bf.base.g as usize,
-        bf.dir_bits() as usize,
-        bf.base.t as usize,
-    );
     let (set, ray, r) = input.write.unwrap_or_default();
     let j = input.start.unwrap_or_default();
-    let (b, p) = (&j.bundle, &j.boxes);
     Some(match base {
         "rst" => input.reset as u64,
         "ray_we" => input.write.is_some() as u64,
         "ray_addr" => ((set as u64 % STREAM_SETS as u64) << 4) | (ray as u64 % STREAM_RAYS as u64),
-        "ray_o_lo" => code(r.o_lo[idx], g),
-        "ray_o_hi" => code(r.o_hi[idx], g),
-        "ray_d_lo" => code(r.d_lo[idx], d),
-        "ray_d_hi" => code(r.d_hi[idx], d),
-        "ray_t" => code(r.t_hi, t),
         "start" => input.start.is_some() as u64,
-        "o_lo" => code(b.o_lo[idx], g),
-        "o_hi" => code(b.o_hi[idx], g),
-        "d_lo" => code(b.d_lo[idx], d),
-        "d_hi" => code(b.d_hi[idx], d),
-        "t_lo" => code(b.t_lo, t),
-        "t_hi" => code(b.t_hi, t),
-        "in_lo" => code(p.inner.lo[idx], g),
-        "in_hi" => code(p.inner.hi[idx], g),
-        "out_lo" => code(p.outer.lo[idx], g),
-        "out_hi" => code(p.outer.hi[idx], g),
         "active" => j.active as u64,
         "job_set" => j.set as u64 % STREAM_SETS as u64,
         "tag" => j.tag as u64,
-        _ => return None,
+        _ => return ray_job_word(bf, base, idx.unwrap_or(0), &r, &j.bundle, &j.boxes),
     })
 }
 

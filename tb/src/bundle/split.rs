@@ -24,7 +24,6 @@ use rand::seq::SliceRandom;
 use rand::{Rng, SeedableRng};
 use rand_pcg::Pcg64;
 use rtl::bundle::split::{split_clocks, BundleSplitIo, SplitIn, SplitJob, SplitOut, SPLIT_RAYS};
-use rtl::slab::fix::code;
 use std::collections::VecDeque;
 use std::path::Path;
 use std::sync::mpsc::sync_channel;
@@ -537,37 +536,23 @@ pub fn run_split<S: BundleSplitIo>(
 /// The value of input port `port` (a Verilog name such as `ray_d_lo_1`) in one clock.
 pub fn split_in_word(bf: &BundleFixFormat, port: &str, input: &SplitIn) -> Result<u64, String> {
     let (base, idx) = rtl::export::split_port(port);
-    let idx = idx.unwrap_or(0);
-    let (g, d, t) = (
-        bf.base.g as usize,
-        bf.dir_bits() as usize,
-        bf.base.t as usize,
-    );
     let (addr, r) = input.write.unwrap_or_default();
     let j = input.start.unwrap_or_default();
-    let (b, p) = (&j.bundle, &j.boxes);
     Ok(match base {
         "ray_we" => input.write.is_some() as u64,
         "ray_addr" => addr as u64,
-        "ray_o_lo" => code(r.o_lo[idx], g),
-        "ray_o_hi" => code(r.o_hi[idx], g),
-        "ray_d_lo" => code(r.d_lo[idx], d),
-        "ray_d_hi" => code(r.d_hi[idx], d),
-        "ray_t" => code(r.t_hi, t),
         "start" => input.start.is_some() as u64,
         "rst" => input.reset as u64,
-        "o_lo" => code(b.o_lo[idx], g),
-        "o_hi" => code(b.o_hi[idx], g),
-        "d_lo" => code(b.d_lo[idx], d),
-        "d_hi" => code(b.d_hi[idx], d),
-        "t_lo" => code(b.t_lo, t),
-        "t_hi" => code(b.t_hi, t),
-        "in_lo" => code(p.inner.lo[idx], g),
-        "in_hi" => code(p.inner.hi[idx], g),
-        "out_lo" => code(p.outer.lo[idx], g),
-        "out_hi" => code(p.outer.hi[idx], g),
         "active" => j.active as u64,
-        _ => return Err(format!("unknown input port {port}")),
+        _ => rtl::bundle::ray_store::ray_job_word(
+            bf,
+            base,
+            idx.unwrap_or(0),
+            &r,
+            &j.bundle,
+            &j.boxes,
+        )
+        .ok_or_else(|| format!("unknown input port {port}"))?,
     })
 }
 
