@@ -10,11 +10,12 @@
 //! output in every clock, for any input sequence, also ray store writes that break the contract below;
 //! [`StreamModel::step`] is one clock. What a job computes is [`crate::bundle::split::split_with`] on the
 //! rays as read from the store (see the tests: under the contract, every job's result equals
-//! [`crate::bundle::split::split_fix`] of its rays at start).
+//! [`crate::bundle::split::split_fix`] of its rays at start). The pair's datapath is a parameter
+//! ([`PairDatapath`]): the fixed one ([`BundleFixFormat`]) and the float one ([`FloatFormat`]).
 //!
 //! # The block, one clock (`L` = the pair's latency)
 //! - `ready` = no ray pair is issued this clock, and the split queue has room for every bundle in
-//!   flight and the new one (`queued + in flight < STREAM_QUEUE`). A `start` while `ready` is taken: the
+//!   flight and the new one (`queued + in flight <` [`stream_queue`]`(L)`). A `start` while `ready` is taken: the
 //!   bundle enters the pair, its tag, active mask, ray set and outer box ride a delay line beside it.
 //! - A ray pair is issued (the pair in two-ray mode) in the clock after the engine addressed it.
 //! - The pair's answer `L` clocks after entry: a decided bundle, or one with no active ray, reports in
@@ -35,24 +36,39 @@
 
 use crate::bundle::edge::BoxPair;
 use crate::bundle::fix::{all_hit_fix, all_miss_fix, BundleFixFormat, FixBundle};
+use crate::bundle::float::{all_hit_float, all_miss_float, FloatBundle};
 use crate::format::fixed::FixBox;
+use crate::format::float::FloatFormat;
+use crate::slab::float::FloatBox;
 use std::collections::VecDeque;
 
 /// Rays in one ray set (the width of `active` and `mask`).
 pub const STREAM_RAYS: usize = 16;
 /// Ray sets in the store (jobs of this many bundles may be in flight over different rays).
 pub const STREAM_SETS: usize = 4;
-/// Entries of the split queue.
+/// Entries of the split queue of a processor over a pair of up to 7 clocks.
 pub const STREAM_QUEUE: usize = 8;
+
+/// Entries of the split queue over a pair of `latency` clocks: [`STREAM_QUEUE`], or the next power of
+/// two above the latency when that is more. `ready` needs the queue plus the bundles in the pair below
+/// this, and the pair holds up to `latency` bundles, so a stream of decided jobs enters every clock.
+pub const fn stream_queue(latency: usize) -> usize {
+    let q = (latency + 1).next_power_of_two();
+    if q > STREAM_QUEUE {
+        q
+    } else {
+        STREAM_QUEUE
+    }
+}
 /// Bits of a job's tag.
 pub const STREAM_TAG_BITS: usize = 8;
 
 /// A datapath of the pair, as the results processor uses it.
 pub trait PairDatapath {
     /// A bundle (or a ray, as a tiny bundle) in the datapath's format.
-    type Bundle: Copy + Default + std::fmt::Debug + PartialEq;
+    type Bundle: Copy + Default + std::fmt::Debug + PartialEq + Send + Sync + 'static;
     /// A box in the datapath's format.
-    type Box: Copy + Default + std::fmt::Debug + PartialEq;
+    type Box: Copy + Default + std::fmt::Debug + PartialEq + Send + Sync + 'static;
     /// The bundle test: `(all_hit, all_miss)`.
     fn decide(&self, b: &Self::Bundle, boxes: &BoxPair<Self::Box>) -> (bool, bool);
     /// The two-ray mode answer for one ray: it may hit the outer box.
@@ -72,6 +88,25 @@ impl PairDatapath for BundleFixFormat {
         !all_miss_fix(self, ray, outer)
     }
 }
+
+impl PairDatapath for FloatFormat {
+    type Bundle = FloatBundle;
+    type Box = FloatBox;
+    fn decide(&self, b: &FloatBundle, boxes: &BoxPair<FloatBox>) -> (bool, bool) {
+        (
+            all_hit_float(self, b, &boxes.inner),
+            all_miss_float(self, b, &boxes.outer),
+        )
+    }
+    fn may_hit(&self, ray: &FloatBundle, outer: &FloatBox) -> bool {
+        !all_miss_float(self, ray, outer)
+    }
+}
+
+/// The clock's inputs of a processor over datapath `P`.
+pub type StreamInOf<P> = StreamIn<<P as PairDatapath>::Bundle, <P as PairDatapath>::Box>;
+/// A job of a processor over datapath `P`.
+pub type StreamJobOf<P> = StreamJob<<P as PairDatapath>::Bundle, <P as PairDatapath>::Box>;
 
 /// A job on the job port.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Default)]
@@ -158,6 +193,8 @@ pub struct StreamModel<P: PairDatapath> {
     /// The pair's contents: `line[0]` entered in the last clock, `line[latency - 1]` answers now.
     line: VecDeque<Option<Entry<P::Box>>>,
     queue: VecDeque<Queued<P::Box>>,
+    /// Entries of the split queue ([`stream_queue`] of the latency).
+    queue_len: usize,
     engine: Option<Queued<P::Box>>,
     issue: Option<Issue<P::Bundle, P::Box>>,
     acc: u16,
@@ -175,8 +212,8 @@ fn lowest(x: u16) -> Option<u8> {
 }
 
 impl<P: PairDatapath> StreamModel<P> {
-    /// The block after reset over `pair`, whose answers come `latency` clocks after entry; the ray
-    /// store holds zero rays.
+    /// The block after reset over `pair`, whose answers come `latency` clocks after entry, with a split
+    /// queue of [`stream_queue`]`(latency)` entries; the ray store holds zero rays.
     pub fn new(pair: P, latency: usize) -> Self {
         assert!(latency >= 1, "the pair takes at least one clock");
         StreamModel {
@@ -184,6 +221,7 @@ impl<P: PairDatapath> StreamModel<P> {
             store: vec![[P::Bundle::default(); STREAM_RAYS]; STREAM_SETS],
             line: (0..latency).map(|_| None).collect(),
             queue: VecDeque::new(),
+            queue_len: stream_queue(latency),
             engine: None,
             issue: None,
             acc: 0,
@@ -207,7 +245,7 @@ impl<P: PairDatapath> StreamModel<P> {
 
     /// `ready` in this clock: a start now is taken.
     pub fn ready(&self) -> bool {
-        self.issue.is_none() && self.queue.len() + self.bundles_in_flight() < STREAM_QUEUE
+        self.issue.is_none() && self.queue.len() + self.bundles_in_flight() < self.queue_len
     }
 
     /// The outputs in this clock.
@@ -310,7 +348,7 @@ impl<P: PairDatapath> StreamModel<P> {
             self.queue.push_back(q);
         }
         assert!(
-            self.queue.len() <= STREAM_QUEUE,
+            self.queue.len() <= self.queue_len,
             "split queue overflow: `ready` must prevent it"
         );
         self.max_queued = self.max_queued.max(self.queue.len());
@@ -434,6 +472,28 @@ mod tests {
         // ready was low exactly in the clocks a pair was issued (steps 6..9 read ready before them).
         let low: Vec<_> = (0..outs.len()).filter(|&k| !outs[k].ready).collect();
         assert_eq!(low, vec![5, 6, 7, 8]);
+    }
+
+    #[test]
+    fn the_queue_holds_every_bundle_in_the_pair_plus_one() {
+        assert_eq!(stream_queue(3), 8);
+        assert_eq!(stream_queue(5), 8);
+        assert_eq!(stream_queue(7), 8);
+        assert_eq!(stream_queue(8), 16);
+        assert_eq!(stream_queue(9), 16);
+        assert_eq!(stream_queue(13), 16);
+        assert_eq!(stream_queue(16), 32);
+    }
+
+    /// A 9-clock pair takes a decided job every clock (the queue's room covers the pair).
+    #[test]
+    fn a_deep_pair_takes_decided_jobs_every_clock() {
+        let mut m = StreamModel::new(Toy, 9);
+        let inputs: Vec<_> = (0..40u8).map(|t| job((true, false), 1, t)).collect();
+        let outs = run(&mut m, &inputs);
+        assert_eq!(outs.iter().filter(|o| o.done).count(), 40);
+        assert_eq!(m.busy_clocks, 40);
+        assert!(outs[..40].iter().all(|o| o.ready), "{outs:?}");
     }
 
     #[test]
