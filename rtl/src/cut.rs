@@ -124,6 +124,59 @@ impl<T: Synth> Logic for Wait<T> {
     }
 }
 
+/// The most clocks a [`Line`] delays: two [`Wait`]s in series.
+pub const MAX_LINE: usize = 2 * MAX_WAIT;
+
+/// `Line`: side data held for up to [`MAX_LINE`] clocks, two [`Wait`]s in series, for a unit whose
+/// latency is a parameter that may exceed [`MAX_WAIT`] (the 13-clock float bundle pair).
+///
+/// # Inputs
+/// `clock`, `d`.
+/// # Outputs
+/// `q`: `d` of `regs` clocks ago.
+#[derive(LogicBlock)]
+pub struct Line<T: Synth> {
+    pub clock: Signal<In, Clock>,
+    pub d: Signal<In, T>,
+    pub q: Signal<Out, T>,
+    first: Wait<T>,
+    second: Wait<T>,
+}
+
+impl<T: Synth> Line<T> {
+    /// A delay of `regs` clocks (at most [`MAX_LINE`]).
+    pub fn new(regs: usize) -> Self {
+        assert!(
+            regs <= MAX_LINE,
+            "a Line delays at most {MAX_LINE} clocks, not {regs}"
+        );
+        let first = regs.min(MAX_WAIT);
+        Line {
+            clock: Default::default(),
+            d: Default::default(),
+            q: Default::default(),
+            first: Wait::new(first),
+            second: Wait::new(regs - first),
+        }
+    }
+
+    /// An array of `N` lines of `regs` clocks each.
+    pub fn array<const N: usize>(regs: usize) -> [Self; N] {
+        std::array::from_fn(|_| Self::new(regs))
+    }
+}
+
+impl<T: Synth> Logic for Line<T> {
+    #[hdl_gen]
+    fn update(&mut self) {
+        self.first.clock.next = self.clock.val();
+        self.second.clock.next = self.clock.val();
+        self.first.d.next = self.d.val();
+        self.second.d.next = self.first.q.val();
+        self.q.next = self.second.q.val();
+    }
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -175,6 +228,27 @@ mod tests {
                         (d + 1).saturating_sub(regs as u64)
                     }
                 })
+                .collect();
+            assert_eq!(seen, want, "{regs} registers");
+        }
+    }
+
+    #[test]
+    fn a_line_delays_by_its_register_count_beyond_one_wait() {
+        for regs in [3, 9, 13, MAX_LINE] {
+            let mut w = Line::<Bits<8>>::new(regs);
+            w.connect_all();
+            let mut seen = vec![];
+            for d in 1..=30u64 {
+                w.d.next = bits::<8>(d);
+                w.clock.next = Clock { clk: false };
+                assert!(simulate(&mut w, 100));
+                w.clock.next = Clock { clk: true };
+                assert!(simulate(&mut w, 100));
+                seen.push(w.q.val().to_u64());
+            }
+            let want: Vec<u64> = (1..=30u64)
+                .map(|d| (d + 1).saturating_sub(regs as u64))
                 .collect();
             assert_eq!(seen, want, "{regs} registers");
         }

@@ -146,23 +146,45 @@ pub fn ray_job_word(
         bf.dir_bits() as usize,
         bf.base.t as usize,
     );
+    let (inner, outer) = (&boxes.inner, &boxes.outer);
+    ray_job_word_of(
+        base,
+        axis,
+        ray,
+        bundle,
+        [&inner.lo, &inner.hi, &outer.lo, &outer.hi],
+        (|x| code(x, g), |x| code(x, d), |x| code(x, t)),
+    )
+}
+
+/// [`ray_job_word`] for any datapath: `boxes` are the job's inner box's low and high corners and the
+/// outer box's; `enc` turns an origin or box coordinate, a direction and a `t` into their port words.
+pub fn ray_job_word_of<V: Copy, T: Copy>(
+    base: &str,
+    axis: usize,
+    ray: &golden::bundle::edge::BundleOf<V, T>,
+    bundle: &golden::bundle::edge::BundleOf<V, T>,
+    boxes: [&[V; 3]; 4],
+    enc: (impl Fn(V) -> u64, impl Fn(V) -> u64, impl Fn(T) -> u64),
+) -> Option<u64> {
     let (r, b, i) = (ray, bundle, axis);
+    let (g, d, t) = enc;
     Some(match base {
-        "ray_o_lo" => code(r.o_lo[i], g),
-        "ray_o_hi" => code(r.o_hi[i], g),
-        "ray_d_lo" => code(r.d_lo[i], d),
-        "ray_d_hi" => code(r.d_hi[i], d),
-        "ray_t" => code(r.t_hi, t),
-        "o_lo" => code(b.o_lo[i], g),
-        "o_hi" => code(b.o_hi[i], g),
-        "d_lo" => code(b.d_lo[i], d),
-        "d_hi" => code(b.d_hi[i], d),
-        "t_lo" => code(b.t_lo, t),
-        "t_hi" => code(b.t_hi, t),
-        "in_lo" => code(boxes.inner.lo[i], g),
-        "in_hi" => code(boxes.inner.hi[i], g),
-        "out_lo" => code(boxes.outer.lo[i], g),
-        "out_hi" => code(boxes.outer.hi[i], g),
+        "ray_o_lo" => g(r.o_lo[i]),
+        "ray_o_hi" => g(r.o_hi[i]),
+        "ray_d_lo" => d(r.d_lo[i]),
+        "ray_d_hi" => d(r.d_hi[i]),
+        "ray_t" => t(r.t_hi),
+        "o_lo" => g(b.o_lo[i]),
+        "o_hi" => g(b.o_hi[i]),
+        "d_lo" => d(b.d_lo[i]),
+        "d_hi" => d(b.d_hi[i]),
+        "t_lo" => t(b.t_lo),
+        "t_hi" => t(b.t_hi),
+        "in_lo" => g(boxes[0][i]),
+        "in_hi" => g(boxes[1][i]),
+        "out_lo" => g(boxes[2][i]),
+        "out_hi" => g(boxes[3][i]),
         _ => return None,
     })
 }
