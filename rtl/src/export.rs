@@ -316,6 +316,10 @@ pub fn export_all(dir: &Path) -> std::io::Result<Vec<PathBuf>> {
     for (module, v, lat) in crate::bundle::pair_float::bundle_float_deep_verilog() {
         write(module, v, lat)?;
     }
+    // The streaming results processor around the float pair (latency: clocks of a decided job).
+    for (module, v, lat) in crate::bundle::stream_float::bundle_stream_float_verilog() {
+        write(module, v, lat)?;
+    }
     std::fs::write(dir.join("latency.csv"), latency)?;
     Ok(out)
 }
@@ -360,6 +364,10 @@ pub enum Family {
     BundleStream {
         bf: golden::bundle::fix::BundleFixFormat,
     },
+    /// The streaming results processor around the float pair (9 clocks).
+    BundleStreamFloat {
+        f: golden::format::float::FloatFormat,
+    },
 }
 
 /// One exported module of the catalogue: its name, its latency in clocks (for the results processor,
@@ -376,7 +384,9 @@ impl Exported {
     pub fn pipelined(&self) -> bool {
         !matches!(
             self.family,
-            Family::BundleSplit { .. } | Family::BundleStream { .. }
+            Family::BundleSplit { .. }
+                | Family::BundleStream { .. }
+                | Family::BundleStreamFloat { .. }
         )
     }
 
@@ -407,6 +417,9 @@ impl Exported {
             }
             Family::BundleSplit { .. } => pick(crate::bundle::split::bundle_split_verilog()),
             Family::BundleStream { .. } => pick(crate::bundle::stream::bundle_stream_verilog()),
+            Family::BundleStreamFloat { .. } => {
+                pick(crate::bundle::stream_float::bundle_stream_float_verilog())
+            }
         }
     }
 }
@@ -524,6 +537,13 @@ pub fn catalog() -> Vec<Exported> {
                 Family::BundleFloat { f, cuts },
             );
         }
+    }
+    for f in crate::BUNDLE_FLOAT_FORMATS {
+        add(
+            crate::bundle::stream_float::bundle_stream_float_module(&f, 0),
+            crate::bundle::pair_float::BUNDLE_FLOAT_LATENCY + 1,
+            Family::BundleStreamFloat { f },
+        );
     }
     v
 }

@@ -43,7 +43,7 @@ pub struct Args {
 /// CSV header of `bundle_stream.csv`.
 pub const CSV_HEADER: &str = "scene,rays,bundling,format,bundles,jobs,decided,clocks,busy_clocks,model_pair_cycles,utilisation,clocks_per_job,decided_stream_jobs,decided_stream_clocks,decided_tests_per_clock,one_job_clocks,speedup_vs_one_job";
 
-fn replay<S: BundleStreamIo>(
+fn replay<S: BundleStreamIo<Dp = BundleFixFormat>>(
     bf: &BundleFixFormat,
     trees: &JobTrees,
     pb: &ProgressBar,

@@ -9,6 +9,8 @@
 //! | [`pair_float::BundleFloat`] | `bundle/pair_float.rs` | the float pair, `golden::bundle::float::decide_float` |
 //! | [`split::BundleSplit`] | `bundle/split.rs` | the results processor, `golden::bundle::split` |
 //! | [`stream::BundleStream`] | `bundle/stream.rs` | the results processor with jobs in flight, `golden::bundle::stream` |
+//! | [`stream_ctl::StreamCtl`] | `bundle/stream_ctl.rs` | the control of both streaming processors |
+//! | [`stream_float::BundleStreamFloat`] | `bundle/stream_float.rs` | the same around the float pair, `golden::bundle::stream` |
 //! | [`ray_store::RayStore`] | `bundle/ray_store.rs` | the two-bank ray store of both processors |
 //!
 //! Which configurations exist: [`registry`].
@@ -24,3 +26,5 @@ pub mod ray_store;
 pub mod registry;
 pub mod split;
 pub mod stream;
+pub mod stream_ctl;
+pub mod stream_float;

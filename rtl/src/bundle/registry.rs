@@ -1,10 +1,11 @@
-//! The bundle blocks that exist: the fixed pair (at 3 and 5 clocks) and the results processor over each preset grid, and the
-//! float pair (at 9 and 13 clocks) in binary32, bfloat16 and binary16.
+//! The bundle blocks that exist: the fixed pair (at 3 and 5 clocks) and the results processors over each preset grid, and the
+//! float pair (at 9 and 13 clocks) and its streaming processor in binary32, bfloat16 and binary16.
 
 use super::pair_fix::BundleFix;
 use super::pair_float::BundleFloat;
 use super::split::BundleSplit;
 use super::stream::BundleStream;
+use super::stream_float::BundleStreamFloat;
 
 /// The fixed-point AllHit + AnyHit bundle pair over b8 (`FD = 6`).
 pub type BundleFixB8 = BundleFix<8, 9, 9, 14>;
@@ -53,3 +54,15 @@ pub type BundleStreamB8 = BundleStream<8, 9, 9, 14>;
 pub type BundleStreamB12 = BundleStream<12, 13, 13, 20>;
 /// The same over b16.
 pub type BundleStreamB16 = BundleStream<16, 17, 17, 24>;
+/// The streaming processor over the 5-clock fixed pair, b12.
+pub type BundleStreamB12P5 =
+    BundleStream<12, 13, 13, 20, { super::edge_fix::BUNDLE_TEST_CUTS_DEEP }>;
+
+/// The streaming results processor around the float pair ([`BundleStreamFloat`]) in binary32.
+pub type BundleStreamFp32 = BundleStreamFloat<8, 23, 32>;
+/// The same in bfloat16.
+pub type BundleStreamBf16 = BundleStreamFloat<8, 7, 16>;
+/// The same in binary16.
+pub type BundleStreamFp16 = BundleStreamFloat<5, 10, 16>;
+/// The same in binary16 around the 13-clock float pair.
+pub type BundleStreamFp16P13 = BundleStreamFloat<5, 10, 16, { crate::fp::cuts::ALL }>;

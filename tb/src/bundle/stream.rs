@@ -12,34 +12,106 @@
 //! its rays) is checked where the contract holds, by [`check_results`].
 
 use crate::bundle::pair_fix::{quantised_case, raw_bundle};
+use crate::bundle::pair_float::{quantised, raw_float_bundle, ray_bundle};
 use crate::campaign::{campaign_bounds, campaign_map};
 use crate::rtl_sim::Clocked;
 use crate::verilator::Harness;
 use golden::bundle::edge::BoxPair;
-use golden::bundle::fix::{BundleFixFormat, FixBundle};
+use golden::bundle::fix::BundleFixFormat;
 use golden::bundle::gen::BundleGen;
-use golden::bundle::stream::{StreamJob, StreamModel, StreamOut, STREAM_RAYS, STREAM_SETS};
-use golden::format::fixed::{FixBox, GridMap};
+use golden::bundle::stream::{
+    PairDatapath, StreamInOf, StreamJob, StreamModel, StreamOut, STREAM_RAYS, STREAM_SETS,
+};
+use golden::format::fixed::FixFormat;
+use golden::format::float::FloatFormat;
 use rand::{Rng, SeedableRng};
 use rand_pcg::Pcg64;
-use rtl::bundle::pair_fix::BUNDLE_FIX_LATENCY;
-use rtl::bundle::stream::{stream_in_word, BundleStreamIo, FixStreamIn, FixStreamJob};
+use rtl::bundle::stream::BundleStreamIo;
 use std::collections::VecDeque;
 use std::path::Path;
 use std::sync::mpsc::sync_channel;
 
-/// The model of the fixed processor over `bf`.
-pub fn stream_model(bf: &BundleFixFormat) -> StreamModel<BundleFixFormat> {
-    StreamModel::new(*bf, BUNDLE_FIX_LATENCY)
+/// A case for the processor: the bundle, its box pair and its rays, each quantised as a tiny bundle.
+pub type StreamCase<P> = (
+    <P as PairDatapath>::Bundle,
+    BoxPair<<P as PairDatapath>::Box>,
+    Vec<<P as PairDatapath>::Bundle>,
+);
+
+/// What the stimulus needs of a pair datapath: cases and raw rays in its format.
+pub trait StreamCases: PairDatapath + Copy + std::fmt::Debug + Send + Sync + 'static {
+    /// The format's name, for messages.
+    fn label(&self) -> String;
+    /// A case from `gen` (its next case, or with `one_ray` a single ray on a grid) in the format, or
+    /// `None` when the bundle, the box or a ray does not fit it.
+    fn case(&self, gen: &mut BundleGen, one_ray: bool) -> Option<StreamCase<Self>>;
+    /// A ray of raw codes of the format (a pattern no quantisation yields).
+    fn raw_ray(&self, rng: &mut Pcg64) -> Self::Bundle;
+}
+
+impl StreamCases for BundleFixFormat {
+    fn label(&self) -> String {
+        self.name()
+    }
+    fn case(&self, gen: &mut BundleGen, one_ray: bool) -> Option<StreamCase<Self>> {
+        let map = campaign_map(self.base);
+        let c = if one_ray {
+            gen.grid_one_ray(&map)
+        } else {
+            gen.next_case()
+        };
+        quantised_case(self, &map, &c)
+    }
+    fn raw_ray(&self, rng: &mut Pcg64) -> Self::Bundle {
+        *raw_bundle(self, rng).0.sides().0
+    }
+}
+
+impl StreamCases for FloatFormat {
+    fn label(&self) -> String {
+        self.name()
+    }
+    /// One-ray cases are on the b8 campaign grid (integer coordinates, exact in every float format).
+    fn case(&self, gen: &mut BundleGen, one_ray: bool) -> Option<StreamCase<Self>> {
+        let c = if one_ray {
+            gen.grid_one_ray(&campaign_map(FixFormat::b8()))
+        } else {
+            gen.next_case()
+        };
+        let (b, p) = quantised(self, &c.bundle, &c.bounds)?;
+        let rays = c
+            .rays
+            .iter()
+            .map(|r| ray_bundle(self, r).ok())
+            .collect::<Option<Vec<_>>>()?;
+        Some((b, p, rays))
+    }
+    fn raw_ray(&self, rng: &mut Pcg64) -> Self::Bundle {
+        raw_float_bundle(self, rng)
+    }
+}
+
+/// Draws `gen`'s cases until one fits `dp` (a single grid ray when `one_ray`).
+fn fitting_case<P: StreamCases>(dp: &P, gen: &mut BundleGen, one_ray: bool) -> StreamCase<P> {
+    loop {
+        if let Some(c) = dp.case(gen, one_ray) {
+            return c;
+        }
+    }
+}
+
+/// The model of processor `S` over `dp`.
+pub fn stream_model<S: BundleStreamIo>(dp: &S::Dp) -> StreamModel<S::Dp> {
+    StreamModel::new(*dp, S::PAIR_LATENCY)
 }
 
 /// A streaming processor in simulation ([`Clocked`]).
 pub struct StreamRtl<S: BundleStreamIo>(Clocked<S>);
 
 impl<S: BundleStreamIo> StreamRtl<S> {
-    /// The block for `bf`, connected.
-    pub fn new(bf: &BundleFixFormat) -> Self {
-        StreamRtl(Clocked::new(S::for_format(bf)))
+    /// The block for `dp`, connected.
+    pub fn new(dp: &S::Dp) -> Self {
+        StreamRtl(Clocked::new(S::for_format(dp)))
     }
 
     /// Starts writing every signal of the block to a VCD file at `path`.
@@ -53,22 +125,21 @@ impl<S: BundleStreamIo> StreamRtl<S> {
     }
 
     /// One clock: drive the inputs, clock, and return the outputs of the next clock.
-    pub fn step(&mut self, input: &FixStreamIn) -> StreamOut {
+    pub fn step(&mut self, input: &StreamInOf<S::Dp>) -> StreamOut {
         self.0.uut.drive(input);
         self.0.clock(S::set_clock);
         self.0.uut.outputs()
     }
 }
 
-/// A seeded open-loop stimulus (see the module doc), `clocks` clocks long.
-pub struct StreamStim {
-    bf: BundleFixFormat,
-    map: GridMap,
+/// A seeded open-loop stimulus (see the module doc), `clocks` clocks long, for a processor over `P`.
+pub struct StreamStim<P: StreamCases> {
+    dp: P,
     gen: BundleGen,
     rng: Pcg64,
     /// Per set: the bundle and box pair of the case loaded into it, and its ray count.
-    sets: [(FixBundle, BoxPair<FixBox>, usize); STREAM_SETS],
-    pending: VecDeque<(u8, u8, FixBundle)>,
+    sets: [(P::Bundle, BoxPair<P::Box>, usize); STREAM_SETS],
+    pending: VecDeque<(u8, u8, P::Bundle)>,
     clocks_left: u64,
     /// Start probability in this phase, in 1/16, and the clocks left in the phase.
     phase: (u32, u32),
@@ -76,15 +147,14 @@ pub struct StreamStim {
     resets: bool,
 }
 
-impl StreamStim {
-    pub fn new(bf: BundleFixFormat, seed: u64, clocks: u64) -> Self {
+impl<P: StreamCases> StreamStim<P> {
+    pub fn new(dp: P, seed: u64, clocks: u64) -> Self {
         let (lo, hi) = campaign_bounds();
         StreamStim {
-            bf,
-            map: campaign_map(bf.base),
+            dp,
             gen: BundleGen::new(seed, lo, hi, 0.6),
             rng: Pcg64::seed_from_u64(seed ^ 0x5eed_57ea),
-            sets: [(FixBundle::default(), BoxPair::default(), 0); STREAM_SETS],
+            sets: [(P::Bundle::default(), BoxPair::default(), 0); STREAM_SETS],
             pending: VecDeque::new(),
             clocks_left: clocks,
             phase: (16, 0),
@@ -99,17 +169,9 @@ impl StreamStim {
         self
     }
 
-    fn draw_case(&mut self) -> (FixBundle, BoxPair<FixBox>, Vec<FixBundle>) {
-        loop {
-            let c = if self.rng.gen_ratio(1, 8) {
-                self.gen.grid_one_ray(&self.map)
-            } else {
-                self.gen.next_case()
-            };
-            if let Some(q) = quantised_case(&self.bf, &self.map, &c) {
-                return q;
-            }
-        }
+    fn draw_case(&mut self) -> StreamCase<P> {
+        let one_ray = self.rng.gen_ratio(1, 8);
+        fitting_case(&self.dp, &mut self.gen, one_ray)
     }
 
     /// Queues a new ray set for set `s`: a case's rays, sometimes padded to 16, sometimes with raw
@@ -126,7 +188,7 @@ impl StreamStim {
         if self.rng.gen_ratio(1, 10) {
             for r in rays.iter_mut() {
                 if self.rng.gen_ratio(1, 3) {
-                    *r = *raw_bundle(&self.bf, &mut self.rng).0.sides().0;
+                    *r = self.dp.raw_ray(&mut self.rng);
                 }
             }
         }
@@ -136,7 +198,7 @@ impl StreamStim {
         self.sets[s as usize] = (b, p, rays.len());
     }
 
-    fn job(&mut self) -> FixStreamJob {
+    fn job(&mut self) -> StreamJob<P::Bundle, P::Box> {
         let set = self.rng.gen_range(0..STREAM_SETS) as u8;
         let (bundle, mut boxes, n) = self.sets[set as usize];
         if self.rng.gen_ratio(1, 3) {
@@ -160,9 +222,9 @@ impl StreamStim {
     }
 }
 
-impl Iterator for StreamStim {
-    type Item = FixStreamIn;
-    fn next(&mut self) -> Option<FixStreamIn> {
+impl<P: StreamCases> Iterator for StreamStim<P> {
+    type Item = StreamInOf<P>;
+    fn next(&mut self) -> Option<StreamInOf<P>> {
         if self.clocks_left == 0 {
             return None;
         }
@@ -176,11 +238,11 @@ impl Iterator for StreamStim {
             let s = self.rng.gen_range(0..STREAM_SETS) as u8;
             self.load_set(s);
         }
-        let mut input = FixStreamIn::default();
+        let mut input = StreamInOf::<P>::default();
         if !self.pending.is_empty() && self.rng.gen_ratio(3, 4) {
             input.write = self.pending.pop_front();
         } else if self.rng.gen_ratio(1, 32) {
-            let r = *raw_bundle(&self.bf, &mut self.rng).0.sides().0;
+            let r = self.dp.raw_ray(&mut self.rng);
             input.write = Some((
                 self.rng.gen_range(0..STREAM_SETS) as u8,
                 self.rng.gen_range(0..STREAM_RAYS) as u8,
@@ -219,20 +281,21 @@ pub struct StreamStats {
 }
 
 /// The model beside a block: steps both with each input and compares outputs, counting coverage.
-pub struct StreamChecker {
-    model: StreamModel<BundleFixFormat>,
+pub struct StreamChecker<P: PairDatapath> {
+    model: StreamModel<P>,
     /// Tags of the jobs in flight, oldest first, with their active counts.
     in_flight: VecDeque<(u8, u32)>,
     pub stats: StreamStats,
 }
 
-impl StreamChecker {
-    pub fn new(bf: &BundleFixFormat) -> Self {
-        Self::with_model(stream_model(bf))
+impl<P: PairDatapath> StreamChecker<P> {
+    /// The checker of processor `S` over `dp` (its model: [`stream_model`]).
+    pub fn of<S: BundleStreamIo<Dp = P>>(dp: &P) -> Self {
+        Self::with_model(stream_model::<S>(dp))
     }
 
     /// A checker with another model (to show that a wrong one is caught).
-    pub fn with_model(model: StreamModel<BundleFixFormat>) -> Self {
+    pub fn with_model(model: StreamModel<P>) -> Self {
         StreamChecker {
             model,
             in_flight: VecDeque::new(),
@@ -246,7 +309,7 @@ impl StreamChecker {
     }
 
     /// One clock of `input`; `got` is the block's outputs after it. Errors name the clock and both.
-    pub fn check(&mut self, input: &FixStreamIn, got: &StreamOut) -> Result<(), String> {
+    pub fn check(&mut self, input: &StreamInOf<P>, got: &StreamOut) -> Result<(), String> {
         let s = &mut self.stats;
         let ready = self.model.ready();
         if let Some(j) = input.start.as_ref().filter(|_| !input.reset) {
@@ -296,9 +359,9 @@ impl StreamChecker {
 
 /// Runs `stim` through the rust-hdl simulation with the checker's model beside it; every clock compared.
 pub fn run_stream<S: BundleStreamIo>(
-    mut ck: StreamChecker,
+    mut ck: StreamChecker<S::Dp>,
     dut: &mut StreamRtl<S>,
-    stim: impl IntoIterator<Item = FixStreamIn>,
+    stim: impl IntoIterator<Item = StreamInOf<S::Dp>>,
 ) -> Result<StreamStats, String> {
     for input in stim {
         let got = dut.step(&input);
@@ -310,26 +373,26 @@ pub fn run_stream<S: BundleStreamIo>(
 /// Streams `stim` through the Verilator `harness`, the model beside it (every clock compared), and for
 /// the first `lockstep` clocks the rust-hdl simulation too.
 pub fn stream_xsim<S: BundleStreamIo, It>(
-    bf: BundleFixFormat,
+    dp: S::Dp,
     harness: &Harness,
     stim: It,
     lockstep: u64,
 ) -> Result<StreamStats, String>
 where
-    It: Iterator<Item = FixStreamIn> + Send + 'static,
+    It: Iterator<Item = StreamInOf<S::Dp>> + Send + 'static,
 {
     let ports: Vec<String> = harness.inputs.iter().map(|p| p.name.clone()).collect();
-    let (tx, rx) = sync_channel::<FixStreamIn>(1 << 14);
+    let (tx, rx) = sync_channel::<StreamInOf<S::Dp>>(1 << 14);
     let records = stim.map(move |input| {
         let rec = ports
             .iter()
-            .map(|p| stream_in_word(&bf, p, &input).expect("known port"))
+            .map(|p| S::in_word(&dp, p, &input).expect("known port"))
             .collect();
         tx.send(input).expect("consumer alive");
         rec
     });
-    let mut rtl = (lockstep > 0).then(|| StreamRtl::<S>::new(&bf));
-    let mut ck = StreamChecker::new(&bf);
+    let mut rtl = (lockstep > 0).then(|| StreamRtl::<S>::new(&dp));
+    let mut ck = StreamChecker::of::<S>(&dp);
     let names = [
         "ready", "done", "done_tag", "all_hit", "all_miss", "split", "mask",
     ];
@@ -414,22 +477,12 @@ pub fn stream_program() -> impl proptest::strategy::Strategy<Value = Vec<StreamS
 }
 
 /// The clocks of `program`, then enough idle clocks for every job to report.
-pub fn plan_stream(bf: &BundleFixFormat, program: &[StreamStep]) -> Vec<FixStreamIn> {
-    let map = campaign_map(bf.base);
+pub fn plan_stream<P: StreamCases>(dp: &P, program: &[StreamStep]) -> Vec<StreamInOf<P>> {
     let (lo, hi) = campaign_bounds();
     let mut clocks = vec![];
     for (k, step) in program.iter().enumerate() {
         let mut gen = BundleGen::new(step.case, lo, hi, 0.6);
-        let mut case = || loop {
-            let c = if step.case % 8 == 0 {
-                gen.grid_one_ray(&map)
-            } else {
-                gen.next_case()
-            };
-            if let Some(q) = quantised_case(bf, &map, &c) {
-                return q;
-            }
-        };
+        let mut case = || fitting_case(dp, &mut gen, step.case % 8 == 0);
         let (bundle, boxes, mut rays) = case();
         if let Some(n) = step.load {
             let n = n as usize + 1;
@@ -437,7 +490,7 @@ pub fn plan_stream(bf: &BundleFixFormat, program: &[StreamStep]) -> Vec<FixStrea
                 rays.extend(case().2);
             }
             for (i, r) in rays.iter().take(n).enumerate() {
-                clocks.push(FixStreamIn {
+                clocks.push(StreamInOf::<P> {
                     write: Some((step.set, i as u8, *r)),
                     ..Default::default()
                 });
@@ -451,14 +504,14 @@ pub fn plan_stream(bf: &BundleFixFormat, program: &[StreamStep]) -> Vec<FixStrea
             tag: k as u8,
         };
         for _ in 0..=step.hold {
-            clocks.push(FixStreamIn {
+            clocks.push(StreamInOf::<P> {
                 start: Some(job),
                 ..Default::default()
             });
         }
-        clocks.extend((0..step.gap).map(|_| FixStreamIn::default()));
+        clocks.extend((0..step.gap).map(|_| StreamInOf::<P>::default()));
     }
-    clocks.extend((0..120).map(|_| FixStreamIn::default()));
+    clocks.extend((0..120).map(|_| StreamInOf::<P>::default()));
     clocks
 }
 
@@ -467,10 +520,13 @@ pub fn plan_stream(bf: &BundleFixFormat, program: &[StreamStep]) -> Vec<FixStrea
 /// failing program is shrunk, replayed with a VCD, and reported. Returns what the programs covered.
 pub fn stream_shrinking<S: BundleStreamIo>(
     name: &str,
-    bf: BundleFixFormat,
+    dp: S::Dp,
     cases: u32,
-    model: impl Fn() -> StreamModel<BundleFixFormat>,
-) -> StreamStats {
+    model: impl Fn() -> StreamModel<S::Dp>,
+) -> StreamStats
+where
+    S::Dp: StreamCases,
+{
     let mut total = StreamStats::default();
     crate::prop::shrinking_check(
         name,
@@ -479,8 +535,8 @@ pub fn stream_shrinking<S: BundleStreamIo>(
         |program| {
             let s = run_stream(
                 StreamChecker::with_model(model()),
-                &mut StreamRtl::<S>::new(&bf),
-                plan_stream(&bf, program),
+                &mut StreamRtl::<S>::new(&dp),
+                plan_stream(&dp, program),
             )?;
             total.taken += s.taken;
             total.done += s.done;
@@ -494,11 +550,11 @@ pub fn stream_shrinking<S: BundleStreamIo>(
             Ok(())
         },
         |program, path| {
-            let mut d = StreamRtl::<S>::new(&bf).vcd_to(path).expect("VCD");
+            let mut d = StreamRtl::<S>::new(&dp).vcd_to(path).expect("VCD");
             let _ = run_stream(
                 StreamChecker::with_model(model()),
                 &mut d,
-                plan_stream(&bf, program),
+                plan_stream(&dp, program),
             );
         },
         |program| format!("job program {program:?}"),

@@ -162,13 +162,13 @@ struct SetState {
 
 /// Replays `trees` closed-loop through `dut` (see the module doc), `progress` called once per bundle
 /// finished. Errors on any difference from the model or from a recorded mask.
-pub fn run_trees<S: BundleStreamIo>(
+pub fn run_trees<S: BundleStreamIo<Dp = BundleFixFormat>>(
     bf: &BundleFixFormat,
     trees: &JobTrees,
     dut: &mut StreamRtl<S>,
     mut progress: impl FnMut(),
 ) -> Result<StreamRun, String> {
-    let mut ck = StreamChecker::new(bf);
+    let mut ck = StreamChecker::of::<S>(bf);
     let mut sets: Vec<SetState> = (0..STREAM_SETS).map(|_| SetState::default()).collect();
     let mut next_bundle = 0;
     let mut tags: Vec<Option<usize>> = vec![None; 256];
@@ -273,12 +273,12 @@ pub fn run_trees<S: BundleStreamIo>(
 
 /// Every decided job of `trees` as one independent stream (each job's rays loaded first, jobs started
 /// whenever `ready`): bundle tests per clock when nothing waits on a result.
-pub fn run_decided<S: BundleStreamIo>(
+pub fn run_decided<S: BundleStreamIo<Dp = BundleFixFormat>>(
     bf: &BundleFixFormat,
     trees: &JobTrees,
     dut: &mut StreamRtl<S>,
 ) -> Result<StreamRun, String> {
-    let mut ck = StreamChecker::new(bf);
+    let mut ck = StreamChecker::of::<S>(bf);
     let jobs: Vec<&TreeJob> = trees.jobs.iter().filter(|j| j.decided).collect();
     let mut run = StreamRun {
         jobs: jobs.len() as u64,

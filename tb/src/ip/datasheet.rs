@@ -238,6 +238,7 @@ pub fn family_doc(e: &Exported) -> FamilyDoc {
         Family::BundleFloat { f, .. } => fd::bundle_float_doc(&f),
         Family::BundleSplit { bf } => fd::bundle_split_doc(&bf),
         Family::BundleStream { bf } => fd::bundle_stream_doc(&bf),
+        Family::BundleStreamFloat { f } => fd::bundle_stream_float_doc(&f),
     }
 }
 

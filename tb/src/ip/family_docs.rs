@@ -922,43 +922,116 @@ contents.",
     }
 }
 
+/// What differs between the streaming processors' datasheets: the pair inside and its encoding.
+struct StreamPairText {
+    /// The pair's module name, e.g. `bundle_fix_<format>`.
+    pair: String,
+    /// "fixed-point" or "binary16 floating-point" and so on.
+    kind: String,
+    params: Vec<(String, String, String)>,
+    store: Vec<(String, String)>,
+    job: Vec<(String, String)>,
+    /// The format's words (grid or float layout) and the encoding of jobs and rays.
+    format: String,
+    enc: String,
+    /// The pair's latency.
+    l: usize,
+}
+
 /// What the datasheet says of the streaming results processor over the fixed pair of `bf`.
 pub fn bundle_stream_doc(bf: &BundleFixFormat) -> FamilyDoc {
-    use golden::bundle::stream::{STREAM_QUEUE, STREAM_RAYS, STREAM_SETS, STREAM_TAG_BITS};
-    use rtl::bundle::pair_fix::BUNDLE_FIX_LATENCY as L;
-    use rtl::bundle::stream::STREAM_ADDR_BITS;
     let fmt = &bf.base;
+    stream_doc(StreamPairText {
+        pair: format!("bundle_fix_{}", bf.name()),
+        kind: "fixed-point".into(),
+        params: vec![
+            param("G", fmt.g, "grid bits: signed coordinates"),
+            param("T", fmt.t, "t code bits (signed)"),
+            param("FT", fmt.ft, "fraction bits of a t code"),
+            param("FD", bf.fd, "fraction bits of a scaled direction code"),
+            param(
+                "D",
+                bf.dir_bits(),
+                "bits of a direction code (signed), `FD + 3`",
+            ),
+        ],
+        store: store_ports(bf),
+        job: job_ports(bf),
+        format: fix_grid_text(fmt),
+        enc: job_encoding(bf),
+        l: rtl::bundle::pair_fix::BUNDLE_FIX_LATENCY,
+    })
+}
+
+/// What the datasheet says of the streaming results processor over the float pair in `f`.
+pub fn bundle_stream_float_doc(f: &FloatFormat) -> FamilyDoc {
+    let w = f.width();
+    let word = |what: &str| format!("{what}, a {w}-bit word");
+    stream_doc(StreamPairText {
+        pair: format!("bundle_float_{}", f.name()),
+        kind: format!("{} floating-point", f.name()),
+        params: float_params(f),
+        store: vec![
+            port("ray_o_lo", word("stored ray's origin, `RD(o)`")),
+            port("ray_o_hi", word("stored ray's origin, `RU(o)`")),
+            port("ray_d_lo", word("stored ray's direction, `RD(d * 2^j)` with the ray's own `j`")),
+            port("ray_d_hi", word("stored ray's direction, `RU(d * 2^j)`")),
+            port("ray_t", word("stored ray's `t_max`, `RU(t_max * 2^-j)`; +inf allowed")),
+        ],
+        job: vec![
+            port("o_lo", word("job bundle's origin box, lower corner `RD(o_min)`")),
+            port("o_hi", word("job bundle's origin box, upper corner `RU(o_max)`")),
+            port("d_lo", word("job bundle's direction box, lower corner `RD(d_min * 2^j)`")),
+            port("d_hi", word("job bundle's direction box, upper corner `RU(d_max * 2^j)`")),
+            port("t_lo", word("job bundle's smallest `t_max`, `RD(t_lo * 2^-j)`")),
+            port("t_hi", word("job bundle's largest `t_max`, `RU(t_hi * 2^-j)`; +inf allowed")),
+            port("in_lo", word("node box, inner (AllHit) lower corner `RU(min)`")),
+            port("in_hi", word("node box, inner (AllHit) upper corner `RD(max)`")),
+            port("out_lo", word("node box, outer (AnyHit and the rays) lower corner `RD(min)`")),
+            port("out_hi", word("node box, outer (AnyHit and the rays) upper corner `RU(max)`")),
+        ],
+        format: float_layout_text(f),
+        enc: format!(
+            "**Encoding**: the job's bundle and box are encoded exactly as for the pair \
+`bundle_float_{name}` (its datasheet has the conditions and the direction scale `j`: **t is not in \
+world units**, `t_world = t_port * 2^j`). Each stored ray (`t_min = 0`) is the bundle of that one ray, \
+with its own `j`: `ray_o_lo/hi = RD/RU(o_a)`, `ray_d_lo/hi = RD/RU(d_a * 2^j)`, \
+`ray_t = RU(t_max * 2^-j)`; its `RD` of `t_max` is not stored. The rays of a job need not be the \
+bundle's own rays, but only then does the report describe them.\n\n",
+            name = f.name()
+        ),
+        l: rtl::bundle::pair_float::BUNDLE_FLOAT_LATENCY,
+    })
+}
+
+/// The streaming processor's datasheet around the pair `p`.
+fn stream_doc(p: StreamPairText) -> FamilyDoc {
+    use golden::bundle::stream::{stream_queue, STREAM_RAYS, STREAM_SETS, STREAM_TAG_BITS};
+    use rtl::bundle::stream::STREAM_ADDR_BITS;
+    let l = p.l;
     let (n, sets, q, tb, ab) = (
         STREAM_RAYS,
         STREAM_SETS,
-        STREAM_QUEUE,
+        stream_queue(l),
         STREAM_TAG_BITS,
         STREAM_ADDR_BITS,
     );
-    let decided = L + 1;
-    let split0 = 2 * L + 3;
+    let decided = l + 1;
+    let split0 = 2 * l + 3;
     let what = format!(
-        "The results processor with jobs in flight, around one fixed-point AllHit / AnyHit pair \
-         (`bundle_fix_{name}`): a job is one ray bundle against one node box, with a tag. A job is taken \
+        "The results processor with jobs in flight, around one {kind} AllHit / AnyHit pair \
+         (`{pair}`): a job is one ray bundle against one node box, with a tag. A job is taken \
          in any clock the pair's input is free, so the pair tests a new bundle every clock; a bundle the \
          pair does not decide joins a split queue, and its active rays, read from a ray store of {sets} \
          sets of {n} rays, go through the same pair two per clock ahead of new bundles. Each job reports \
          with its tag; **results may leave in another order than the jobs came** (a decided job overtakes \
          split ones). The mask never drops a ray that hits. A decided job reports {decided} clocks after \
-         its start; on scene job streams the pair's input is busy in 99% or more of the clocks \
-         (`rtu bundle-stream`).",
-        name = bf.name()
+         its start; a stream of decided jobs enters one a clock.",
+        kind = p.kind,
+        pair = p.pair,
     );
-    let params = vec![
-        param("G", fmt.g, "grid bits: signed coordinates"),
-        param("T", fmt.t, "t code bits (signed)"),
-        param("FT", fmt.ft, "fraction bits of a t code"),
-        param("FD", bf.fd, "fraction bits of a scaled direction code"),
-        param(
-            "D",
-            bf.dir_bits(),
-            "bits of a direction code (signed), `FD + 3`",
-        ),
+    let mut params = p.params;
+    params.extend([
         param(
             "rays",
             n,
@@ -966,15 +1039,15 @@ pub fn bundle_stream_doc(bf: &BundleFixFormat) -> FamilyDoc {
         ),
         param("sets", sets, "sets in the ray store"),
         param("queue", q, "entries of the split queue"),
-        param("pair latency", L, "clocks of the pair inside"),
-    ];
+        param("pair latency", l, "clocks of the pair inside"),
+    ]);
     let mut ports = vec![
         port("ray_we", "ray store write enable: the ray on `ray_*` is written to entry `ray_addr` at the end of the clock"),
         port("ray_addr", format!("ray store address ({ab} bits): `[5:4]` the set, `[3:0]` the ray; ray `i` of a set is bit `i` of `active` and `mask`")),
     ];
-    ports.extend(store_ports(bf));
+    ports.extend(p.store);
     ports.push(port("start", "start a job: taken in a clock with `ready = 1` and `rst = 0`; the job ports are sampled in that clock only"));
-    ports.extend(job_ports(bf));
+    ports.extend(p.job);
     ports.extend([
         port("active", format!("{n} bits: bit `i` = ray `i` of the job's set belongs to the job (tested one by one if the bundle is undecided)")),
         port("job_set", format!("the job's ray set, 0 .. {}", sets - 1)),
@@ -1021,9 +1094,8 @@ returned as given; keep the tags of jobs in flight distinct to tell their report
 queued, or being split): no `done` follows for any of them, and `ready` is 1 from the next clock. A \
 `start` in a clock with `rst` high is not taken; a ray store write is. The ray store and the report \
 registers keep their contents.",
-        enc = job_encoding(bf),
-        grid = fix_grid_text(fmt),
-        l = L,
+        enc = p.enc,
+        grid = p.format,
     );
     FamilyDoc {
         what,
@@ -1052,6 +1124,7 @@ mod tests {
             Family::BundleFloat { f, .. } => bundle_float_doc(&f),
             Family::BundleSplit { bf } => bundle_split_doc(&bf),
             Family::BundleStream { bf } => bundle_stream_doc(&bf),
+            Family::BundleStreamFloat { f } => bundle_stream_float_doc(&f),
             _ => return None,
         })
     }
@@ -1070,6 +1143,7 @@ mod tests {
             .chain(rtl::bundle::pair_fix::bundle_fix_verilog())
             .chain(rtl::bundle::split::bundle_split_verilog())
             .chain(rtl::bundle::stream::bundle_stream_verilog())
+            .chain(rtl::bundle::stream_float::bundle_stream_float_verilog())
         {
             batch.insert(m, v);
         }
@@ -1142,7 +1216,7 @@ mod tests {
             assert!(!doc.what.is_empty() && !doc.rules.is_empty() && !doc.params.is_empty());
         }
         // Every family of this file is in the catalogue.
-        assert_eq!(families.len(), 7, "families found: {families:?}");
+        assert_eq!(families.len(), 8, "families found: {families:?}");
     }
 
     #[test]
@@ -1181,6 +1255,15 @@ mod tests {
                         assert_eq!(width(p), Some(cf.f.width() as usize), "{} {p}", e.module);
                     }
                     assert_eq!(param("R"), Some(cf.r as usize));
+                }
+                Family::BundleStreamFloat { f } => {
+                    for p in ["o_lo_0", "d_hi_2", "ray_t", "out_hi_1", "ray_d_lo_0"] {
+                        assert_eq!(width(p), param("W"), "{} {p}", e.module);
+                    }
+                    assert_eq!(param("W"), Some(f.width() as usize));
+                    assert_eq!(width("mask"), param("rays"), "{}", e.module);
+                    assert_eq!(width("active"), param("rays"), "{}", e.module);
+                    assert_eq!(width("done_tag"), width("tag"), "{}", e.module);
                 }
                 Family::BundleStream { .. } => {
                     assert_eq!(width("d_lo_0"), param("D"), "{}", e.module);

@@ -169,9 +169,29 @@ fn stream_b12_matches_model_shrinking() {
     use tb::bundle::stream::{stream_model, stream_shrinking};
     let bf = BundleFixFormat::presets()[1];
     let s = with_big_stack(move || {
-        stream_shrinking::<rtl::BundleStreamB12>("bundle_stream_b12", bf, 300, || stream_model(&bf))
+        stream_shrinking::<rtl::BundleStreamB12>("bundle_stream_b12", bf, 300, || {
+            stream_model::<rtl::BundleStreamB12>(&bf)
+        })
     });
     println!("bundle_stream_b12: {s:?}");
+    let j = s.done / 20;
+    assert!(
+        s.all_hit > j && s.all_miss > j && s.split > j && s.refused > j && s.overtakes > 0,
+        "every outcome, refused starts and reports out of order must occur: {s:?}"
+    );
+}
+
+/// The float streaming processor (binary16) on job programs, as the fixed one above.
+#[test]
+fn stream_fp16_matches_model_shrinking() {
+    use tb::bundle::stream::{stream_model, stream_shrinking};
+    let f = golden::format::float::FloatFormat::FP16;
+    let s = with_big_stack(move || {
+        stream_shrinking::<rtl::BundleStreamFp16>("bundle_stream_fp16", f, 100, || {
+            stream_model::<rtl::BundleStreamFp16>(&f)
+        })
+    });
+    println!("bundle_stream_fp16: {s:?}");
     let j = s.done / 20;
     assert!(
         s.all_hit > j && s.all_miss > j && s.split > j && s.refused > j && s.overtakes > 0,

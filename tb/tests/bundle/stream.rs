@@ -1,4 +1,5 @@
-//! The streaming results processor (`rtl::bundle::stream::BundleStream`): the rust-hdl simulation clock
+//! The streaming results processors (`rtl::bundle::stream::BundleStream` around the fixed pair,
+//! `rtl::bundle::stream_float::BundleStreamFloat` around the float pair): the rust-hdl simulation clock
 //! for clock against `golden::bundle::stream::StreamModel` (ready, done, tag, result and the held result
 //! fields in every clock) on open-loop job streams with bursts, split jobs queueing, four ray sets loaded
 //! while jobs run, garbage writes and resets; a wrong model is caught; the exported Verilog (Verilator
@@ -7,48 +8,59 @@
 
 use golden::bundle::fix::BundleFixFormat;
 use golden::bundle::stream::StreamModel;
+use golden::format::float::FloatFormat;
 use rtl::bundle::pair_fix::BUNDLE_FIX_LATENCY;
-use rtl::bundle::stream::{bundle_stream_module, BundleStreamIo};
+use rtl::bundle::stream::BundleStreamIo;
 use std::time::Instant;
 use tb::bundle::stream::{
-    run_stream, stream_xsim, StreamChecker, StreamRtl, StreamStats, StreamStim,
+    run_stream, stream_xsim, StreamCases, StreamChecker, StreamRtl, StreamStats, StreamStim,
 };
+
+/// The float processors' blocks are large: every test runs on a thread with a big stack.
+fn big_stack(f: impl FnOnce() + Send + 'static) {
+    tb::plane::float::with_big_stack(f)
+}
 
 fn preset(i: usize) -> BundleFixFormat {
     BundleFixFormat::presets()[i]
 }
 
 /// Every outcome, full splits, a queue in use, reports out of order and refused starts must occur.
-fn well_covered(bf: &BundleFixFormat, s: &StreamStats) {
+fn well_covered<P: StreamCases>(dp: &P, s: &StreamStats) {
     let j = s.done / 20;
     assert!(
         s.all_hit > j && s.all_miss > j && s.split > j && s.full_splits > 0,
         "{}: every outcome must be well represented: {s:?}",
-        bf.name()
+        dp.label()
     );
     assert!(
         s.max_queued >= 3 && s.overtakes > j && s.refused > j,
         "{}: the queue, out-of-order reports and refused starts must occur: {s:?}",
-        bf.name()
+        dp.label()
     );
 }
 
-fn rtl_matches_model<S: BundleStreamIo>(bf: BundleFixFormat, clocks: u64, seed: u64) {
-    let start = Instant::now();
-    let mut dut = StreamRtl::<S>::new(&bf);
-    let stats = run_stream(
-        StreamChecker::new(&bf),
-        &mut dut,
-        StreamStim::new(bf, seed, clocks),
-    )
-    .unwrap_or_else(|e| panic!("{}: {e}", bf.name()));
-    println!(
-        "{}: {stats:?} match in {:.1} s",
-        bf.name(),
-        start.elapsed().as_secs_f64()
-    );
-    assert_eq!(stats.clocks, clocks);
-    well_covered(&bf, &stats);
+fn rtl_matches_model<S: BundleStreamIo>(dp: S::Dp, clocks: u64, seed: u64)
+where
+    S::Dp: StreamCases,
+{
+    big_stack(move || {
+        let start = Instant::now();
+        let mut dut = StreamRtl::<S>::new(&dp);
+        let stats = run_stream(
+            StreamChecker::of::<S>(&dp),
+            &mut dut,
+            StreamStim::new(dp, seed, clocks),
+        )
+        .unwrap_or_else(|e| panic!("{}: {e}", S::module(&dp)));
+        println!(
+            "{}: {stats:?} match in {:.1} s",
+            S::module(&dp),
+            start.elapsed().as_secs_f64()
+        );
+        assert_eq!(stats.clocks, clocks);
+        well_covered(&dp, &stats);
+    })
 }
 
 #[test]
@@ -66,7 +78,35 @@ fn stream_rtl_matches_model_b16() {
     rtl_matches_model::<rtl::BundleStreamB16>(preset(2), 20_000, 3);
 }
 
-/// The check can fail: a model whose pair answers one clock late disagrees with the RTL.
+/// Over the 5-clock fixed pair: the same control with 5-clock delay lines.
+#[test]
+fn stream_rtl_matches_model_b12_p5() {
+    rtl_matches_model::<rtl::BundleStreamB12P5>(preset(1), 20_000, 12);
+}
+
+#[test]
+fn stream_float_rtl_matches_model_fp16() {
+    rtl_matches_model::<rtl::BundleStreamFp16>(FloatFormat::FP16, 8_000, 31);
+}
+
+#[test]
+fn stream_float_rtl_matches_model_bf16() {
+    rtl_matches_model::<rtl::BundleStreamBf16>(FloatFormat::BF16, 8_000, 32);
+}
+
+#[test]
+fn stream_float_rtl_matches_model_fp32() {
+    rtl_matches_model::<rtl::BundleStreamFp32>(FloatFormat::FP32, 8_000, 33);
+}
+
+/// Over the 13-clock float pair (two Waits per delay line).
+#[test]
+fn stream_float_rtl_matches_model_fp16_p13() {
+    rtl_matches_model::<rtl::BundleStreamFp16P13>(FloatFormat::FP16, 8_000, 34);
+}
+
+/// The check can fail: a model whose pair answers one clock late disagrees with the RTL, on either
+/// datapath.
 #[test]
 fn stream_wrong_model_is_caught() {
     let bf = preset(1);
@@ -78,79 +118,109 @@ fn stream_wrong_model_is_caught() {
     )
     .expect_err("a wrong latency must be caught");
     println!("caught: {e}");
+    big_stack(|| {
+        let f = FloatFormat::FP16;
+        let mut dut = StreamRtl::<rtl::BundleStreamFp16>::new(&f);
+        let e = run_stream(
+            StreamChecker::with_model(StreamModel::new(
+                f,
+                rtl::bundle::pair_float::BUNDLE_FLOAT_LATENCY - 1,
+            )),
+            &mut dut,
+            StreamStim::new(f, 4, 2_000),
+        )
+        .expect_err("a wrong latency must be caught");
+        println!("caught: {e}");
+    });
 }
 
 /// Synchronous reset at random clocks: every job in flight is dropped, in the rust-hdl simulation and
 /// in Verilator (every clock against rust-hdl and the model).
-#[test]
-fn stream_reset_drops_jobs_in_flight_b12() {
-    let bf = preset(1);
-    let clocks = 20_000;
-    let mut dut = StreamRtl::<rtl::BundleStreamB12>::new(&bf);
-    let stats = run_stream(
-        StreamChecker::new(&bf),
-        &mut dut,
-        StreamStim::new(bf, 51, clocks).with_resets(),
-    )
-    .unwrap_or_else(|e| panic!("{}: {e}", bf.name()));
-    assert!(stats.resets > 20, "{stats:?}");
-    assert!(stats.done < stats.taken, "{stats:?}");
-    let (v, _) = export::<rtl::BundleStreamB12>(&bf);
-    let h = tb::verilator::build(
-        &v,
-        &bundle_stream_module(&bf),
-        &tb::out_dir().join("verilator"),
-    )
-    .unwrap_or_else(|e| panic!("{e}"));
-    let x = stream_xsim::<rtl::BundleStreamB12, _>(
-        bf,
-        &h,
-        StreamStim::new(bf, 51, clocks).with_resets(),
-        u64::MAX,
-    )
-    .unwrap_or_else(|e| panic!("{}: {e}", bf.name()));
-    assert_eq!(x, stats);
+fn reset_drops_jobs_in_flight<S: BundleStreamIo>(dp: S::Dp, clocks: u64)
+where
+    S::Dp: StreamCases,
+{
+    big_stack(move || {
+        let mut dut = StreamRtl::<S>::new(&dp);
+        let stats = run_stream(
+            StreamChecker::of::<S>(&dp),
+            &mut dut,
+            StreamStim::new(dp, 51, clocks).with_resets(),
+        )
+        .unwrap_or_else(|e| panic!("{}: {e}", S::module(&dp)));
+        assert!(stats.resets > clocks / 1000, "{stats:?}");
+        assert!(stats.done < stats.taken, "{stats:?}");
+        let (v, _) = export::<S>(&dp);
+        let h = tb::verilator::build(&v, &S::module(&dp), &tb::out_dir().join("verilator"))
+            .unwrap_or_else(|e| panic!("{e}"));
+        let x = stream_xsim::<S, _>(
+            dp,
+            &h,
+            StreamStim::new(dp, 51, clocks).with_resets(),
+            u64::MAX,
+        )
+        .unwrap_or_else(|e| panic!("{}: {e}", S::module(&dp)));
+        assert_eq!(x, stats);
+    })
 }
 
-fn export<S: BundleStreamIo>(bf: &BundleFixFormat) -> (String, std::path::PathBuf) {
-    let name = bundle_stream_module(bf);
-    let v = rtl::export::verilog_named(&mut S::for_format(bf), &name);
+#[test]
+fn stream_reset_drops_jobs_in_flight_b12() {
+    reset_drops_jobs_in_flight::<rtl::BundleStreamB12>(preset(1), 20_000);
+}
+
+#[test]
+fn stream_float_reset_drops_jobs_in_flight_fp16() {
+    reset_drops_jobs_in_flight::<rtl::BundleStreamFp16>(FloatFormat::FP16, 8_000);
+}
+
+fn export<S: BundleStreamIo>(dp: &S::Dp) -> (String, std::path::PathBuf) {
+    let name = S::module(dp);
+    let v = rtl::export::verilog_named(&mut S::for_format(dp), &name);
     let path = tb::verilog_tools::write(&v, &name);
     (v, path)
 }
 
 #[test]
 fn stream_verilog_is_lint_clean_and_accepted_by_icarus() {
-    for path in [
-        export::<rtl::BundleStreamB8>(&preset(0)).1,
-        export::<rtl::BundleStreamB12>(&preset(1)).1,
-        export::<rtl::BundleStreamB16>(&preset(2)).1,
-    ] {
-        tb::verilog_tools::lint(&path).unwrap_or_else(|e| panic!("{e}"));
-        tb::verilog_tools::icarus(&path).unwrap_or_else(|e| panic!("{e}"));
-    }
+    big_stack(|| {
+        for path in [
+            export::<rtl::BundleStreamB8>(&preset(0)).1,
+            export::<rtl::BundleStreamB12>(&preset(1)).1,
+            export::<rtl::BundleStreamB16>(&preset(2)).1,
+            export::<rtl::BundleStreamB12P5>(&preset(1)).1,
+            export::<rtl::BundleStreamFp32>(&FloatFormat::FP32).1,
+            export::<rtl::BundleStreamBf16>(&FloatFormat::BF16).1,
+            export::<rtl::BundleStreamFp16>(&FloatFormat::FP16).1,
+            export::<rtl::BundleStreamFp16P13>(&FloatFormat::FP16).1,
+        ] {
+            tb::verilog_tools::lint(&path).unwrap_or_else(|e| panic!("{e}"));
+            tb::verilog_tools::icarus(&path).unwrap_or_else(|e| panic!("{e}"));
+        }
+    });
 }
 
-fn cross_simulate<S: BundleStreamIo>(bf: BundleFixFormat, clocks: u64, lockstep: u64, seed: u64) {
-    let start = Instant::now();
-    let (v, _) = export::<S>(&bf);
-    let h = tb::verilator::build(
-        &v,
-        &bundle_stream_module(&bf),
-        &tb::out_dir().join("verilator"),
-    )
-    .unwrap_or_else(|e| panic!("{e}"));
-    let built = start.elapsed().as_secs_f64();
-    let stats = stream_xsim::<S, _>(bf, &h, StreamStim::new(bf, seed, clocks), lockstep)
-        .unwrap_or_else(|e| panic!("{}: {e}", bf.name()));
-    println!(
-        "{}: {stats:?} (harness ready in {built:.1} s, {:.1} s in all)",
-        bf.name(),
-        start.elapsed().as_secs_f64()
-    );
-    assert_eq!(stats.clocks, clocks);
-    assert!(stats.done >= 300_000, "{stats:?}");
-    well_covered(&bf, &stats);
+fn cross_simulate<S: BundleStreamIo>(dp: S::Dp, clocks: u64, lockstep: u64, seed: u64)
+where
+    S::Dp: StreamCases,
+{
+    big_stack(move || {
+        let start = Instant::now();
+        let (v, _) = export::<S>(&dp);
+        let h = tb::verilator::build(&v, &S::module(&dp), &tb::out_dir().join("verilator"))
+            .unwrap_or_else(|e| panic!("{e}"));
+        let built = start.elapsed().as_secs_f64();
+        let stats = stream_xsim::<S, _>(dp, &h, StreamStim::new(dp, seed, clocks), lockstep)
+            .unwrap_or_else(|e| panic!("{}: {e}", S::module(&dp)));
+        println!(
+            "{}: {stats:?} (harness ready in {built:.1} s, {:.1} s in all)",
+            S::module(&dp),
+            start.elapsed().as_secs_f64()
+        );
+        assert_eq!(stats.clocks, clocks);
+        assert!(stats.done >= 300_000, "{stats:?}");
+        well_covered(&dp, &stats);
+    })
 }
 
 #[test]
@@ -166,6 +236,21 @@ fn stream_verilator_matches_model_and_rtl_b12() {
 #[test]
 fn stream_verilator_matches_model_and_rtl_b16() {
     cross_simulate::<rtl::BundleStreamB16>(preset(2), 900_000, 50_000, 7);
+}
+
+#[test]
+fn stream_float_verilator_matches_model_and_rtl_fp32() {
+    cross_simulate::<rtl::BundleStreamFp32>(FloatFormat::FP32, 900_000, 3_000, 41);
+}
+
+#[test]
+fn stream_float_verilator_matches_model_and_rtl_bf16() {
+    cross_simulate::<rtl::BundleStreamBf16>(FloatFormat::BF16, 900_000, 3_000, 42);
+}
+
+#[test]
+fn stream_float_verilator_matches_model_and_rtl_fp16() {
+    cross_simulate::<rtl::BundleStreamFp16>(FloatFormat::FP16, 900_000, 3_000, 43);
 }
 
 /// Scene job streams, closed loop (`tb::bundle::stream_scene`): on a small room, primary rays in 4x4
@@ -203,100 +288,108 @@ fn stream_scene_jobs_replay_closed_loop_b12() {
     }
 }
 
-/// In the waveform: decided jobs started on consecutive clocks each report (`done`) 4 clock edges after
-/// their start, one a clock, while `ready` stays high; then a split job of 16 rays holds `ready` low for
-/// its 8 pair clocks and reports no earlier than `2L + 3 + 8` edges after its start.
+/// In the waveform: decided jobs started on consecutive clocks each report (`done`) `L + 1` clock edges
+/// after their start, one a clock, while `ready` stays high; then a split job of 16 rays holds `ready`
+/// low for its 8 pair clocks and reports no earlier than `2L + 3 + 8` edges after its start.
+fn waveform_timing<S: BundleStreamIo>(dp: S::Dp, name: String)
+where
+    S::Dp: StreamCases,
+{
+    big_stack(move || {
+        use golden::bundle::stream::{PairDatapath, StreamInOf, StreamJob};
+        let (lo, hi) = tb::campaign::campaign_bounds();
+        let mut gen = golden::bundle::gen::BundleGen::new(21, lo, hi, 0.6);
+        let mut model = tb::bundle::stream::stream_model::<S>(&dp);
+        // Three decided cases and one undecided case whose 16 rays split.
+        let (mut decided, mut undecided) = (vec![], None);
+        while decided.len() < 3 || undecided.is_none() {
+            let Some((b, p, mut rays)) = dp.case(&mut gen, false) else {
+                continue;
+            };
+            let (h, m) = dp.decide(&b, &p);
+            if h || m {
+                decided.push((b, p));
+            } else if undecided.is_none() {
+                while rays.len() < 16 {
+                    rays.extend_from_within(..);
+                }
+                rays.truncate(16);
+                undecided = Some((b, p, rays));
+            }
+        }
+        let (ub, up, rays) = undecided.unwrap();
+        let mut stim: Vec<StreamInOf<S::Dp>> = rays
+            .iter()
+            .enumerate()
+            .map(|(i, r)| StreamInOf::<S::Dp> {
+                write: Some((1, i as u8, *r)),
+                ..Default::default()
+            })
+            .collect();
+        let job = |b, p, active, tag| StreamInOf::<S::Dp> {
+            start: Some(StreamJob {
+                bundle: b,
+                boxes: p,
+                active,
+                set: 1,
+                tag,
+            }),
+            ..Default::default()
+        };
+        for (k, (b, p)) in decided.iter().enumerate() {
+            stim.push(job(*b, *p, 0xffff, k as u8));
+        }
+        stim.extend((0..S::PAIR_LATENCY + 3).map(|_| StreamInOf::<S::Dp>::default()));
+        stim.push(job(ub, up, 0xffff, 9));
+        stim.extend((0..60).map(|_| StreamInOf::<S::Dp>::default()));
+        let path = tb::out_dir().join("vcd").join(format!("{name}_timing.vcd"));
+        {
+            let mut dut = StreamRtl::<S>::new(&dp).vcd_to(&path).unwrap();
+            for input in &stim {
+                let got = dut.step(input);
+                model.step(input);
+                assert_eq!(got, model.outputs());
+            }
+        }
+        let trace = tb::vcd_read::read_trace(&path, &["start", "done", "ready"]).unwrap();
+        let (starts, dones) = (trace.rises("start"), trace.rises("done"));
+        // The three decided starts are one rise (start held high three clocks); the split job's is the second.
+        assert_eq!(starts.len(), 2, "{starts:?}");
+        assert_eq!(
+            dones.len(),
+            2,
+            "done pulses merge for consecutive reports: {dones:?}"
+        );
+        let l = S::PAIR_LATENCY;
+        assert_eq!(
+            trace.edges_between(starts[0], dones[0]),
+            l + 1,
+            "decided: L + 1"
+        );
+        let split = trace.edges_between(starts[1], dones[1]);
+        assert!(
+            split >= 2 * l + 3 + 8,
+            "split job reported after {split} edges"
+        );
+        // ready falls once, for the split job's eight pair clocks.
+        let falls = trace.rises("ready").len();
+        assert_eq!(
+            falls, 2,
+            "ready rises at time 0 and after the split job's rays"
+        );
+        println!(
+            "{name}: decided: {} edges; split of 16 rays: {split} edges",
+            l + 1
+        );
+    })
+}
+
 #[test]
 fn stream_waveform_timing_b16() {
-    use golden::bundle::stream::StreamJob;
-    use rtl::bundle::stream::FixStreamIn;
-    let bf = preset(2);
-    let map = tb::campaign::campaign_map(bf.base);
-    let (lo, hi) = tb::campaign::campaign_bounds();
-    let mut gen = golden::bundle::gen::BundleGen::new(21, lo, hi, 0.6);
-    let mut model = tb::bundle::stream::stream_model(&bf);
-    // Three decided cases and one undecided case whose 16 rays split.
-    let (mut decided, mut undecided) = (vec![], None);
-    while decided.len() < 3 || undecided.is_none() {
-        let c = gen.next_case();
-        let Some((b, p, mut rays)) = tb::bundle::pair_fix::quantised_case(&bf, &map, &c) else {
-            continue;
-        };
-        use golden::bundle::stream::PairDatapath;
-        let (h, m) = bf.decide(&b, &p);
-        if h || m {
-            decided.push((b, p));
-        } else if undecided.is_none() {
-            while rays.len() < 16 {
-                rays.extend_from_within(..);
-            }
-            rays.truncate(16);
-            undecided = Some((b, p, rays));
-        }
-    }
-    let (ub, up, rays) = undecided.unwrap();
-    let mut stim: Vec<FixStreamIn> = rays
-        .iter()
-        .enumerate()
-        .map(|(i, r)| FixStreamIn {
-            write: Some((1, i as u8, *r)),
-            ..Default::default()
-        })
-        .collect();
-    let job = |b, p, active, tag| FixStreamIn {
-        start: Some(StreamJob {
-            bundle: b,
-            boxes: p,
-            active,
-            set: 1,
-            tag,
-        }),
-        ..Default::default()
-    };
-    for (k, (b, p)) in decided.iter().enumerate() {
-        stim.push(job(*b, *p, 0xffff, k as u8));
-    }
-    stim.extend((0..6).map(|_| FixStreamIn::default()));
-    stim.push(job(ub, up, 0xffff, 9));
-    stim.extend((0..40).map(|_| FixStreamIn::default()));
-    let path = tb::out_dir()
-        .join("vcd")
-        .join("bundle_stream_b16_timing.vcd");
-    {
-        let mut dut = StreamRtl::<rtl::BundleStreamB16>::new(&bf)
-            .vcd_to(&path)
-            .unwrap();
-        for input in &stim {
-            let got = dut.step(input);
-            model.step(input);
-            assert_eq!(got, model.outputs());
-        }
-    }
-    let trace = tb::vcd_read::read_trace(&path, &["start", "done", "ready"]).unwrap();
-    let (starts, dones) = (trace.rises("start"), trace.rises("done"));
-    // The three decided starts are one rise (start held high three clocks); the split job's is the second.
-    assert_eq!(starts.len(), 2, "{starts:?}");
-    assert_eq!(
-        dones.len(),
-        2,
-        "done pulses merge for consecutive reports: {dones:?}"
-    );
-    assert_eq!(
-        trace.edges_between(starts[0], dones[0]),
-        4,
-        "decided: L + 1"
-    );
-    let split = trace.edges_between(starts[1], dones[1]);
-    let l = BUNDLE_FIX_LATENCY;
-    assert!(
-        split >= 2 * l + 3 + 8,
-        "split job reported after {split} edges"
-    );
-    // ready falls once, for the split job's eight pair clocks.
-    let falls = trace.rises("ready").len();
-    assert_eq!(
-        falls, 2,
-        "ready rises at time 0 and after the split job's rays"
-    );
-    println!("decided: 4 edges; split of 16 rays: {split} edges");
+    waveform_timing::<rtl::BundleStreamB16>(preset(2), "bundle_stream_b16".into());
+}
+
+#[test]
+fn stream_float_waveform_timing_fp16() {
+    waveform_timing::<rtl::BundleStreamFp16>(FloatFormat::FP16, "bundle_stream_fp16".into());
 }
