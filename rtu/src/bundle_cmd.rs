@@ -1,12 +1,15 @@
 //! `rtu bundle-scenes`: ray bundles on scenes with the AllHit / AnyHit pair:
 //! per scene, ray set, bundling and datapath, the fraction of bundle-box tests decided without splitting
-//! against the ideal, and tester cycles against testing the rays one by one. The traversal and its checks
-//! are [`golden::bundle::traverse`]; the bundling [`golden::bundle::build`].
+//! against the ideal, and tester cycles against testing the rays one by one, under each re-bounding rule
+//! (column `rebound`: `keep`, `world`, and for fixed datapaths `stored`, the results processor's rule). The
+//! traversal and its checks are [`golden::bundle::traverse`]; the bundling [`golden::bundle::build`].
 
 use crate::list;
 use golden::bundle::build::{build, tiles, BuildParams, Built, SplitMetric};
 use golden::bundle::fix::BundleFixFormat;
-use golden::bundle::traverse::{traverse_all, BundlePath, BundleStats, ExactHits, TravOptions};
+use golden::bundle::traverse::{
+    traverse_all, BundlePath, BundleStats, ExactHits, Rebound, TravOptions,
+};
 use golden::format::fixed::{FixFormat, GridMap};
 use golden::format::float::FloatFormat;
 use golden::geom::Ray;
@@ -58,7 +61,7 @@ pub struct Args {
 struct Rec {
     series: String,
     path: String,
-    rebound: bool,
+    rebound: Rebound,
     metric: String,
     per: f64,
     st: BundleStats,
@@ -216,7 +219,11 @@ pub fn scenes(a: &Args, out: &Path) -> Result<String, String> {
                 .expect("every bundling is of a known ray set");
             let nb = bd.built.len() as u64;
             for path in &built_paths {
-                for rebound in [false, true] {
+                // Stored-ray re-bounding is a rule of the fixed datapath's results processor.
+                let rules = Rebound::ALL
+                    .into_iter()
+                    .filter(|r| *r != Rebound::Stored || matches!(path, BundlePath::Fix(..)));
+                for rebound in rules {
                     for (mname, metric) in &metrics {
                         let pb = ProgressBar::new(nb);
                         pb.set_style(
@@ -228,7 +235,7 @@ pub fn scenes(a: &Args, out: &Path) -> Result<String, String> {
                             bd.set,
                             bd.name,
                             path.name(),
-                            if rebound { "rebound" } else { "keep" }
+                            rebound.name()
                         ));
                         let opt = TravOptions {
                             metric: *metric,
@@ -271,7 +278,7 @@ pub fn scenes(a: &Args, out: &Path) -> Result<String, String> {
     charts(&recs, &chart_path, out)?;
     let _ = writeln!(
         table,
-        "\nCharts ({chart_path}, re-bounded, no early split): {}/bundle_decided.svg, {}/bundle_speedup.svg",
+        "\nCharts ({chart_path}, re-bounded in world units, no early split): {}/bundle_decided.svg, {}/bundle_speedup.svg",
         out.display(),
         out.display()
     );
@@ -292,7 +299,7 @@ fn charts(recs: &[Rec], path: &str, out: &Path) -> Result<(), String> {
     let mut speedup: Vec<crate::chart::Series> = vec![];
     for r in recs
         .iter()
-        .filter(|r| r.path == path && r.rebound && r.metric == "never")
+        .filter(|r| r.path == path && r.rebound == Rebound::World && r.metric == "never")
     {
         let i = match decided.iter().position(|s| s.0 == r.series) {
             Some(i) => i,
@@ -333,7 +340,7 @@ fn row(
     scene: &str,
     bd: &Bundling,
     path: &BundlePath,
-    rebound: bool,
+    rebound: Rebound,
     metric: &str,
     st: &BundleStats,
 ) {
@@ -341,12 +348,13 @@ fn row(
     let spread = st.dir_spread_sum / st.bundles.max(1) as f64;
     let _ = writeln!(
         csv,
-        "{scene},{},{},{},{per:.2},{spread:.4},{},{},{rebound},{metric},{},{},{},{:.4},{},{},{},{},{},{:.3},{:.3},{}",
+        "{scene},{},{},{},{per:.2},{spread:.4},{},{},{},{metric},{},{},{},{:.4},{},{},{},{},{},{:.3},{:.3},{}",
         bd.set,
         bd.name,
         st.bundles,
         path.kind(),
         path.name(),
+        rebound.name(),
         st.tests,
         st.ideal,
         st.decided,
@@ -366,7 +374,7 @@ fn row(
         bd.set,
         bd.name,
         path.name(),
-        if rebound { "yes" } else { "no" },
+        rebound.name(),
         st.tests,
         100.0 * st.decided_of_ideal(),
         st.speedup(),

@@ -206,12 +206,18 @@ pub fn decide_fix(
     b: &Bundle,
     bx: &Aabb,
 ) -> Result<(bool, bool), Error> {
-    let q = quantize_bundle(bf, map, b)?;
+    decide_fix_quantised(bf, map, &quantize_bundle(bf, map, b)?, bx)
+}
+
+/// Both tests of a bundle already on the datapath's codes against a world box quantised onto `map`.
+pub fn decide_fix_quantised(
+    bf: &BundleFixFormat,
+    map: &GridMap,
+    q: &FixBundle,
+    bx: &Aabb,
+) -> Result<(bool, bool), Error> {
     let p = quantize_box_pair(map, bx)?;
-    Ok((
-        all_hit_fix(bf, &q, &p.inner),
-        all_miss_fix(bf, &q, &p.outer),
-    ))
+    Ok((all_hit_fix(bf, q, &p.inner), all_miss_fix(bf, q, &p.outer)))
 }
 
 /// Renames the subject of a quantisation error (the slab quantiser says "box").

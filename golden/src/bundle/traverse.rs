@@ -9,9 +9,10 @@
 //! (a) tests the bundle on the pair: "all hit" keeps every active ray, "all miss" drops them all, neither
 //! *splits* the bundle and tests its active rays two per cycle (the pair's two-ray mode), or (b) skips the
 //! bundle test when the [`SplitMetric`] predicts a split, and tests the rays at once. The rays kept go on
-//! to both children of an inner node, as one bundle again: the original bundle, or with `rebound` the
-//! smallest bundle around the rays kept (a results processor can gather those bounds while the rays
-//! stream through the pair during a split, at no extra cycle; the RTL does not do that yet). Distances
+//! to both children of an inner node, as one bundle again ([`Rebound`]): the original bundle, the smallest
+//! world bundle around the rays kept, quantised again, or the hull of the kept rays' stored tiny bundles
+//! ([`crate::bundle::rebound`], the rule a results processor can follow while the rays stream through the
+//! pair during a split, at no extra cycle; the RTL does not do that yet). Distances
 //! are not shortened by hits (an "all hits" traversal), so the node visits do not depend on child order.
 //!
 //! Every answer is checked: "all hit" with a ray of the tested bundle that misses (every ray of the
@@ -30,8 +31,9 @@
 use crate::bundle::build::{Built, SplitMetric};
 use crate::bundle::check::slab_hit;
 use crate::bundle::edge::{decide_exact, Bundle};
-use crate::bundle::fix::{decide_fix, BundleFixFormat};
+use crate::bundle::fix::{decide_fix, decide_fix_quantised, BundleFixFormat};
 use crate::bundle::float::decide_float;
+use crate::bundle::rebound::{quantize_scaled, rebound_fix, ScaledBundle};
 use crate::bundle::split::split_cycles;
 use crate::error::Error;
 use crate::format::fixed::GridMap;
@@ -199,7 +201,33 @@ impl ExactHits {
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct TravOptions {
     pub metric: SplitMetric,
-    pub rebound: bool,
+    pub rebound: Rebound,
+}
+
+/// What bundle the rays kept at a node take on to its children.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Rebound {
+    /// The bundle tested (in the end, the original bundle around every ray).
+    Keep,
+    /// The smallest world bundle around the rays kept ([`Bundle::around`]), quantised again.
+    World,
+    /// The hull of the kept rays as the ray store holds them ([`crate::bundle::rebound::rebound_fix`]):
+    /// the rule of a results processor; the fixed datapath only.
+    Stored,
+}
+
+impl Rebound {
+    /// `keep`, `world` or `stored`.
+    pub fn name(&self) -> &'static str {
+        match self {
+            Rebound::Keep => "keep",
+            Rebound::World => "world",
+            Rebound::Stored => "stored",
+        }
+    }
+
+    /// Every rule, `Keep` first.
+    pub const ALL: [Rebound; 3] = [Rebound::Keep, Rebound::World, Rebound::Stored];
 }
 
 fn mask_rays(rays: &[Ray], idx: &[usize], mask: u64) -> Vec<Ray> {
@@ -229,8 +257,20 @@ pub fn traverse_bundle(
     st.rays += n as u64;
     st.dir_spread_sum += crate::bundle::build::spread(&b.bundle).1;
     let all = if n == 64 { u64::MAX } else { (1u64 << n) - 1 };
-    let mut stack = vec![(0usize, all, b.bundle)];
-    while let Some((node, active, bundle)) = stack.pop() {
+    let fix = match path {
+        BundlePath::Fix(bf, map) => Some((bf, map)),
+        _ => None,
+    };
+    if opt.rebound == Rebound::Stored && fix.is_none() {
+        return Err(Error::Io(format!(
+            "{}: stored-ray re-bounding is a rule of the fixed datapath",
+            path.name()
+        )));
+    }
+    // Each entry: node, active rays, the world bundle (the metric's, and the pair's unless `stored`
+    // holds the bundle on the datapath's codes).
+    let mut stack: Vec<(usize, u64, Bundle, Option<ScaledBundle>)> = vec![(0, all, b.bundle, None)];
+    while let Some((node, active, bundle, stored)) = stack.pop() {
         let nd = &bvh.nodes[node];
         let bx = &nd.bounds;
         // Exact hits of every ray of the bundle; `hits` of the active ones. The bundle tested here stands for
@@ -242,7 +282,11 @@ pub fn traverse_bundle(
             }
         }
         let hits = all_hits & active;
-        let members = if opt.rebound { active } else { all };
+        let members = if opt.rebound == Rebound::Keep {
+            all
+        } else {
+            active
+        };
         let member_hits = all_hits & members;
         let count = active.count_ones() as u64;
         st.tests += 1;
@@ -268,7 +312,10 @@ pub fn traverse_bundle(
             split(st)?
         } else {
             st.pair_cycles += u64::from(split_cycles(false, active));
-            let (all_hit, all_miss) = path.decide(&bundle, bx)?;
+            let (all_hit, all_miss) = match (&stored, fix) {
+                (Some(h), Some((bf, map))) => decide_fix_quantised(bf, map, &h.q, bx)?,
+                _ => path.decide(&bundle, bx)?,
+            };
             if all_hit && all_miss {
                 return Err(Error::Io(at("both \"all hit\" and \"all miss\"")));
             }
@@ -301,13 +348,24 @@ pub fn traverse_bundle(
             continue;
         }
         if let NodeKind::Inner { left, right } = nd.kind {
-            let next = if opt.rebound && mask != active {
-                Bundle::around(&mask_rays(rays, &b.rays, mask))?
+            let (next, next_stored) = if opt.rebound != Rebound::Keep && mask != active {
+                let kept = mask_rays(rays, &b.rays, mask);
+                let hull = match (opt.rebound, fix) {
+                    (Rebound::Stored, Some((bf, map))) => {
+                        let tiny = kept
+                            .iter()
+                            .map(|r| quantize_scaled(bf, map, &Bundle::of_ray(r)?))
+                            .collect::<Result<Vec<_>, Error>>()?;
+                        rebound_fix(bf, tiny)
+                    }
+                    _ => None,
+                };
+                (Bundle::around(&kept)?, hull)
             } else {
-                bundle
+                (bundle, stored)
             };
-            stack.push((right, mask, next));
-            stack.push((left, mask, next));
+            stack.push((right, mask, next, next_stored));
+            stack.push((left, mask, next, next_stored));
         }
     }
     Ok(())
@@ -335,8 +393,11 @@ pub fn traverse_all(
 mod tests {
     use super::*;
     use crate::bundle::build::{build, tiles, BuildParams};
+    use crate::format::fixed::dir_scale_exp;
     use crate::format::fixed::FixFormat;
     use crate::scene::tri_scene as scene;
+    use rand::{Rng, SeedableRng};
+    use rand_pcg::Pcg64;
 
     fn setup() -> (scene::TriScene, Bvh, Vec<Ray>) {
         let sc = scene::by_name("room", 1, Some(6)).unwrap();
@@ -357,7 +418,7 @@ mod tests {
         let built = tiles(&rays, 16, 12, 1).unwrap();
         let opt = TravOptions {
             metric: SplitMetric::NEVER,
-            rebound: false,
+            rebound: Rebound::Keep,
         };
         let map = map_for(&sc, FixFormat::b16());
         for path in [
@@ -384,10 +445,19 @@ mod tests {
         let ex_hits = ExactHits::new(&bvh, &rays);
         let built = tiles(&rays, 16, 12, 4).unwrap();
         let map = map_for(&sc, FixFormat::b16());
-        for rebound in [false, true] {
+        for rebound in Rebound::ALL {
             let opt = TravOptions {
                 metric: SplitMetric::NEVER,
                 rebound,
+            };
+            // The exact path has no stored rays: its world re-bounding is the yardstick then.
+            let ex_opt = TravOptions {
+                rebound: if rebound == Rebound::Stored {
+                    Rebound::World
+                } else {
+                    rebound
+                },
+                ..opt
             };
             let ex = traverse_all(
                 &bvh,
@@ -395,7 +465,7 @@ mod tests {
                 &ex_hits,
                 &built,
                 &BundlePath::Exact,
-                &opt,
+                &ex_opt,
                 || {},
             )
             .unwrap();
@@ -418,6 +488,54 @@ mod tests {
             }
             assert!(fx.decided <= ex.decided + ex.tests / 50, "{fx:?} vs {ex:?}");
         }
+    }
+
+    /// Stored-ray re-bounding on room tiles, every answer checked by the traversal: with directions of
+    /// one scale exponent it is world re-bounding exactly; with directions of many lengths it still
+    /// never contradicts the exact tests (a looser t range may decide less). Other datapaths refuse it.
+    #[test]
+    fn stored_ray_rebounding_is_checked_and_fixed_only() {
+        let (sc, bvh, rays) = setup();
+        let built = tiles(&rays, 16, 12, 4).unwrap();
+        let run = |rays: &[Ray], path: &BundlePath, rebound| {
+            let ex_hits = ExactHits::new(&bvh, rays);
+            let opt = TravOptions {
+                metric: SplitMetric::NEVER,
+                rebound,
+            };
+            traverse_all(&bvh, rays, &ex_hits, &built, path, &opt, || {})
+        };
+        let mut rng = Pcg64::seed_from_u64(5);
+        let long_and_short: Vec<Ray> = rays
+            .iter()
+            .map(|r| {
+                let s = 2f64.powi(rng.gen_range(-6..=6));
+                Ray {
+                    dir: r.dir * s,
+                    t_max: rng.gen_range(2.0..30.0) / s,
+                    ..*r
+                }
+            })
+            .collect();
+        for f in [FixFormat::b12(), FixFormat::b16()] {
+            let path = BundlePath::Fix(BundleFixFormat::over(f).unwrap(), map_for(&sc, f));
+            let unit = rays
+                .iter()
+                .map(|r| dir_scale_exp(r.dir))
+                .collect::<Vec<_>>();
+            if unit.iter().all(|&j| j == unit[0]) {
+                assert_eq!(
+                    run(&rays, &path, Rebound::Stored).unwrap(),
+                    run(&rays, &path, Rebound::World).unwrap()
+                );
+            }
+            let stored = run(&long_and_short, &path, Rebound::Stored).unwrap();
+            let world = run(&long_and_short, &path, Rebound::World).unwrap();
+            assert!(stored.decided > 0 && stored.tests > 0, "{stored:?}");
+            assert_eq!(stored.rays, world.rays);
+        }
+        let e = run(&rays, &BundlePath::Exact, Rebound::Stored).unwrap_err();
+        assert!(e.to_string().contains("fixed datapath"), "{e}");
     }
 
     #[test]
@@ -444,7 +562,7 @@ mod tests {
                 &BundlePath::Exact,
                 &TravOptions {
                     metric,
-                    rebound: true,
+                    rebound: Rebound::World,
                 },
                 || {},
             )
