@@ -360,13 +360,16 @@ pub enum Family {
     BundleSplit {
         bf: golden::bundle::fix::BundleFixFormat,
     },
-    /// The streaming results processor (jobs in flight, tagged reports, out of order).
+    /// The streaming results processor (jobs in flight, tagged reports, out of order) around the fixed
+    /// pair with its cut points `cuts`.
     BundleStream {
         bf: golden::bundle::fix::BundleFixFormat,
+        cuts: usize,
     },
-    /// The streaming results processor around the float pair (9 clocks).
+    /// The streaming results processor around the float pair with its cut points `cuts`.
     BundleStreamFloat {
         f: golden::format::float::FloatFormat,
+        cuts: usize,
     },
 }
 
@@ -522,11 +525,11 @@ pub fn catalog() -> Vec<Exported> {
             Family::BundleSplit { bf: *bf },
         );
     }
-    for bf in &golden::bundle::fix::BundleFixFormat::presets()[1..] {
+    for (bf, cuts) in crate::bundle::stream::bundle_stream_configs() {
         add(
-            crate::bundle::stream::bundle_stream_module(bf),
-            crate::bundle::pair_fix::BUNDLE_FIX_LATENCY + 1,
-            Family::BundleStream { bf: *bf },
+            crate::bundle::stream::bundle_stream_module_cuts(&bf, cuts),
+            crate::bundle::pair_fix::bundle_fix_latency(cuts) + 1,
+            Family::BundleStream { bf, cuts },
         );
     }
     for (cuts, _) in crate::bundle::pair_float::BUNDLE_FLOAT_DEPTHS {
@@ -538,11 +541,11 @@ pub fn catalog() -> Vec<Exported> {
             );
         }
     }
-    for f in crate::BUNDLE_FLOAT_FORMATS {
+    for (f, cuts) in crate::bundle::stream_float::bundle_stream_float_configs() {
         add(
-            crate::bundle::stream_float::bundle_stream_float_module(&f, 0),
-            crate::bundle::pair_float::BUNDLE_FLOAT_LATENCY + 1,
-            Family::BundleStreamFloat { f },
+            crate::bundle::stream_float::bundle_stream_float_module(&f, cuts),
+            crate::bundle::pair_float::bundle_float_latency(cuts) + 1,
+            Family::BundleStreamFloat { f, cuts },
         );
     }
     v

@@ -275,13 +275,25 @@ pub fn bundle_stream_verilog_of<S: BundleStreamIo>(dp: &S::Dp) -> (String, Strin
     (module, v, S::PAIR_LATENCY + 1)
 }
 
-/// `(module, Verilog, clocks of a decided job)` of the streaming processor over the presets b12 and b16
+/// The exported configurations `(format, cut points of the pair)`, in the order of
+/// [`bundle_stream_verilog`]: b12 and b16 over the 3-clock pair, b12 over the 5-clock one.
+pub fn bundle_stream_configs() -> Vec<(BundleFixFormat, usize)> {
+    let [_, b12, b16] = BundleFixFormat::presets();
+    vec![
+        (b12, BUNDLE_TEST_CUTS),
+        (b16, BUNDLE_TEST_CUTS),
+        (b12, crate::bundle::edge_fix::BUNDLE_TEST_CUTS_DEEP),
+    ]
+}
+
+/// `(module, Verilog, clocks of a decided job)` of every configuration in [`bundle_stream_configs`]
 /// (for `crate::export::export_all`).
 pub fn bundle_stream_verilog() -> Vec<(String, String, usize)> {
     let [_, b12, b16] = BundleFixFormat::presets();
     vec![
         bundle_stream_verilog_of::<crate::BundleStreamB12>(&b12),
         bundle_stream_verilog_of::<crate::BundleStreamB16>(&b16),
+        bundle_stream_verilog_of::<crate::BundleStreamB12P5>(&b12),
     ]
 }
 

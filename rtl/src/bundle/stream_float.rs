@@ -242,14 +242,27 @@ pub fn bundle_stream_float_module(f: &FloatFormat, cuts: usize) -> String {
     )
 }
 
-/// `(module, Verilog, clocks of a decided job)` of the float streaming processor in binary32,
-/// bfloat16 and binary16 over the 9-clock pair (for `crate::export::export_all`).
+/// The exported configurations `(format, cut points of the pair)`, in the order of
+/// [`bundle_stream_float_verilog`]: binary32, bfloat16 and binary16 over the 9-clock pair, binary16
+/// over the 13-clock one.
+pub fn bundle_stream_float_configs() -> Vec<(FloatFormat, usize)> {
+    vec![
+        (FloatFormat::FP32, 0),
+        (FloatFormat::BF16, 0),
+        (FloatFormat::FP16, 0),
+        (FloatFormat::FP16, crate::fp::cuts::ALL),
+    ]
+}
+
+/// `(module, Verilog, clocks of a decided job)` of every configuration in
+/// [`bundle_stream_float_configs`] (for `crate::export::export_all`).
 pub fn bundle_stream_float_verilog() -> Vec<(String, String, usize)> {
     use crate::bundle::stream::bundle_stream_verilog_of;
     vec![
         bundle_stream_verilog_of::<crate::BundleStreamFp32>(&FloatFormat::FP32),
         bundle_stream_verilog_of::<crate::BundleStreamBf16>(&FloatFormat::BF16),
         bundle_stream_verilog_of::<crate::BundleStreamFp16>(&FloatFormat::FP16),
+        bundle_stream_verilog_of::<crate::BundleStreamFp16P13>(&FloatFormat::FP16),
     ]
 }
 

@@ -237,8 +237,8 @@ pub fn family_doc(e: &Exported) -> FamilyDoc {
         Family::BundleFix { bf, .. } => fd::bundle_fix_doc(&bf),
         Family::BundleFloat { f, .. } => fd::bundle_float_doc(&f),
         Family::BundleSplit { bf } => fd::bundle_split_doc(&bf),
-        Family::BundleStream { bf } => fd::bundle_stream_doc(&bf),
-        Family::BundleStreamFloat { f } => fd::bundle_stream_float_doc(&f),
+        Family::BundleStream { bf, cuts } => fd::bundle_stream_doc(&bf, cuts),
+        Family::BundleStreamFloat { f, cuts } => fd::bundle_stream_float_doc(&f, cuts),
     }
 }
 

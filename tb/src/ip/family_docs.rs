@@ -938,11 +938,12 @@ struct StreamPairText {
     l: usize,
 }
 
-/// What the datasheet says of the streaming results processor over the fixed pair of `bf`.
-pub fn bundle_stream_doc(bf: &BundleFixFormat) -> FamilyDoc {
+/// What the datasheet says of the streaming results processor over the fixed pair of `bf` with the cut
+/// points `cuts`.
+pub fn bundle_stream_doc(bf: &BundleFixFormat, cuts: usize) -> FamilyDoc {
     let fmt = &bf.base;
     stream_doc(StreamPairText {
-        pair: format!("bundle_fix_{}", bf.name()),
+        pair: rtl::bundle::pair_fix::bundle_fix_module_cuts(bf, cuts),
         kind: "fixed-point".into(),
         params: vec![
             param("G", fmt.g, "grid bits: signed coordinates"),
@@ -959,16 +960,18 @@ pub fn bundle_stream_doc(bf: &BundleFixFormat) -> FamilyDoc {
         job: job_ports(bf),
         format: fix_grid_text(fmt),
         enc: job_encoding(bf),
-        l: rtl::bundle::pair_fix::BUNDLE_FIX_LATENCY,
+        l: rtl::bundle::pair_fix::bundle_fix_latency(cuts),
     })
 }
 
-/// What the datasheet says of the streaming results processor over the float pair in `f`.
-pub fn bundle_stream_float_doc(f: &FloatFormat) -> FamilyDoc {
+/// What the datasheet says of the streaming results processor over the float pair in `f` with the cut
+/// points `cuts`.
+pub fn bundle_stream_float_doc(f: &FloatFormat, cuts: usize) -> FamilyDoc {
     let w = f.width();
+    let pair = rtl::bundle::pair_float::bundle_float_module_cuts(f, cuts);
     let word = |what: &str| format!("{what}, a {w}-bit word");
     stream_doc(StreamPairText {
-        pair: format!("bundle_float_{}", f.name()),
+        pair: pair.clone(),
         kind: format!("{} floating-point", f.name()),
         params: float_params(f),
         store: vec![
@@ -993,14 +996,13 @@ pub fn bundle_stream_float_doc(f: &FloatFormat) -> FamilyDoc {
         format: float_layout_text(f),
         enc: format!(
             "**Encoding**: the job's bundle and box are encoded exactly as for the pair \
-`bundle_float_{name}` (its datasheet has the conditions and the direction scale `j`: **t is not in \
+`{pair}` (its datasheet has the conditions and the direction scale `j`: **t is not in \
 world units**, `t_world = t_port * 2^j`). Each stored ray (`t_min = 0`) is the bundle of that one ray, \
 with its own `j`: `ray_o_lo/hi = RD/RU(o_a)`, `ray_d_lo/hi = RD/RU(d_a * 2^j)`, \
 `ray_t = RU(t_max * 2^-j)`; its `RD` of `t_max` is not stored. The rays of a job need not be the \
-bundle's own rays, but only then does the report describe them.\n\n",
-            name = f.name()
+bundle's own rays, but only then does the report describe them.\n\n"
         ),
-        l: rtl::bundle::pair_float::BUNDLE_FLOAT_LATENCY,
+        l: rtl::bundle::pair_float::bundle_float_latency(cuts),
     })
 }
 
@@ -1123,8 +1125,8 @@ mod tests {
             Family::BundleFix { bf, .. } => bundle_fix_doc(&bf),
             Family::BundleFloat { f, .. } => bundle_float_doc(&f),
             Family::BundleSplit { bf } => bundle_split_doc(&bf),
-            Family::BundleStream { bf } => bundle_stream_doc(&bf),
-            Family::BundleStreamFloat { f } => bundle_stream_float_doc(&f),
+            Family::BundleStream { bf, cuts } => bundle_stream_doc(&bf, cuts),
+            Family::BundleStreamFloat { f, cuts } => bundle_stream_float_doc(&f, cuts),
             _ => return None,
         })
     }
@@ -1256,7 +1258,7 @@ mod tests {
                     }
                     assert_eq!(param("R"), Some(cf.r as usize));
                 }
-                Family::BundleStreamFloat { f } => {
+                Family::BundleStreamFloat { f, .. } => {
                     for p in ["o_lo_0", "d_hi_2", "ray_t", "out_hi_1", "ray_d_lo_0"] {
                         assert_eq!(width(p), param("W"), "{} {p}", e.module);
                     }

@@ -238,6 +238,12 @@ fn stream_verilator_matches_model_and_rtl_b16() {
     cross_simulate::<rtl::BundleStreamB16>(preset(2), 900_000, 50_000, 7);
 }
 
+/// The exported 5-clock-pair processor, as the others.
+#[test]
+fn stream_verilator_matches_model_and_rtl_b12_p5() {
+    cross_simulate::<rtl::BundleStreamB12P5>(preset(1), 900_000, 50_000, 9);
+}
+
 #[test]
 fn stream_float_verilator_matches_model_and_rtl_fp32() {
     cross_simulate::<rtl::BundleStreamFp32>(FloatFormat::FP32, 900_000, 3_000, 41);
@@ -251,6 +257,12 @@ fn stream_float_verilator_matches_model_and_rtl_bf16() {
 #[test]
 fn stream_float_verilator_matches_model_and_rtl_fp16() {
     cross_simulate::<rtl::BundleStreamFp16>(FloatFormat::FP16, 900_000, 3_000, 43);
+}
+
+/// The exported 13-clock-pair processor, as the others.
+#[test]
+fn stream_float_verilator_matches_model_and_rtl_fp16_p13() {
+    cross_simulate::<rtl::BundleStreamFp16P13>(FloatFormat::FP16, 900_000, 3_000, 44);
 }
 
 /// Scene job streams, closed loop (`tb::bundle::stream_scene`): on a small room, primary rays in 4x4
