@@ -34,7 +34,10 @@
 //! of [`STREAM_QUEUE`] entries with head and tail pointers; `resv_q` counts the queue plus the bundles in
 //! the pair, and `ready` needs `resv_q < STREAM_QUEUE`, so the queue cannot overflow. The engine holds
 //! one job: each clock it addresses the next two active rays and loads the queue's head in the clock it
-//! addresses its job's last pair (or when idle). Every input of the pair the datapath block forms from
+//! addresses its job's last pair (or when idle). The pair it addresses is held in registers as one-hot
+//! masks, picked a clock ahead (from the job's remaining rays, or from the queue's head when it loads),
+//! so the store's read addresses decode registers and the two find-first-set chains end at registers,
+//! not at the store (the b12 processor over the 5-clock pair was limited there at 82.3 MHz on ECP5). Every input of the pair the datapath block forms from
 //! these outputs comes from a port, a register or a RAM output.
 
 use crate::cut::Line;
@@ -120,6 +123,11 @@ pub struct StreamCtl<
     resv_q: DFF<Bits<CB>>,
     // the engine's job
     e_busy_q: DFF<Bit>,
+    /// The pair the engine addresses this clock, as one-hot masks (ray B's empty when there is none),
+    /// and the job's active rays after it: registered so that the store's addresses come straight from
+    /// registers (the next pair is picked a clock ahead, from `rem_q` or the queue's head).
+    hot_a_q: DFF<Bits<STREAM_RAYS>>,
+    hot_b_q: DFF<Bits<STREAM_RAYS>>,
     rem_q: DFF<Bits<STREAM_RAYS>>,
     e_set_q: DFF<Bits<SET_BITS>>,
     e_tag_q: DFF<Bits<STREAM_TAG_BITS>>,
@@ -168,6 +176,7 @@ pub struct StreamCtl<
     head_set: Signal<Local, Bits<SET_BITS>>,
     head_lo: [Signal<Local, Bits<C>>; 3],
     head_hi: [Signal<Local, Bits<C>>; 3],
+    pick_from: Signal<Local, Bits<STREAM_RAYS>>,
     hot_a: Signal<Local, Bits<STREAM_RAYS>>,
     rem_b: Signal<Local, Bits<STREAM_RAYS>>,
     hot_b: Signal<Local, Bits<STREAM_RAYS>>,
@@ -248,6 +257,8 @@ impl<const C: usize, const Q: usize, const Q3: usize, const PB: usize, const CB:
             count_q: Default::default(),
             resv_q: Default::default(),
             e_busy_q: Default::default(),
+            hot_a_q: Default::default(),
+            hot_b_q: Default::default(),
             rem_q: Default::default(),
             e_set_q: Default::default(),
             e_tag_q: Default::default(),
@@ -289,6 +300,7 @@ impl<const C: usize, const Q: usize, const Q3: usize, const PB: usize, const CB:
             head_set: Default::default(),
             head_lo: Default::default(),
             head_hi: Default::default(),
+            pick_from: Default::default(),
             hot_a: Default::default(),
             rem_b: Default::default(),
             hot_b: Default::default(),
@@ -352,6 +364,8 @@ impl<const C: usize, const Q: usize, const Q3: usize, const PB: usize, const CB:
             count_q,
             resv_q,
             e_busy_q,
+            hot_a_q,
+            hot_b_q,
             rem_q,
             e_set_q,
             e_tag_q,
@@ -437,11 +451,7 @@ impl<const C: usize, const Q: usize, const Q3: usize, const PB: usize, const CB:
             }
         }
 
-        // The engine: the next two rays of its job, as one-hot masks, store addresses and tag fields.
-        self.hot_a.next = self.rem_q.q.val() & (!self.rem_q.q.val() + self.one16.val());
-        self.rem_b.next = self.rem_q.q.val() & !self.hot_a.val();
-        self.hot_b.next = self.rem_b.val() & (!self.rem_b.val() + self.one16.val());
-        self.rem_next.next = self.rem_b.val() & !self.hot_b.val();
+        // The engine: this clock's pair (registered one-hot masks) as store addresses and tag fields.
         self.set_base.next = self.base_k[0].val();
         for k in 0..4 {
             if self.e_set_q.q.val() == self.set_k[k].val() {
@@ -453,19 +463,19 @@ impl<const C: usize, const Q: usize, const Q3: usize, const PB: usize, const CB:
         self.tag_a.next = self.zero_tag.val();
         self.tag_bb.next = self.zero_tag.val();
         for k in 0..16 {
-            if self.hot_a.val().get_bit(k) {
+            if self.hot_a_q.q.val().get_bit(k) {
                 self.a_addr.next = self.set_base.val() | self.addr_k[k].val();
                 self.tag_a.next = self.tag_ak[k].val();
             }
-            if self.hot_b.val().get_bit(k) {
+            if self.hot_b_q.q.val().get_bit(k) {
                 self.b_addr.next = self.set_base.val() | self.addr_k[k].val();
                 self.tag_bb.next = self.tag_bk[k].val();
             }
         }
         self.addr_a.next = self.a_addr.val();
         self.addr_b.next = self.b_addr.val();
-        if self.hot_b.val().any() {
-            if self.rem_next.val().any() {
+        if self.hot_b_q.q.val().any() {
+            if self.rem_q.q.val().any() {
                 self.tag_flags.next = self.tag_ray.val() | self.tag_b.val();
             } else {
                 self.tag_flags.next = self.tag_b.val() | self.tag_last.val();
@@ -473,14 +483,26 @@ impl<const C: usize, const Q: usize, const Q3: usize, const PB: usize, const CB:
         } else {
             self.tag_flags.next = self.tag_last.val();
         }
-        self.last_addr.next = self.e_busy_q.q.val() & !self.rem_next.val().any();
+        self.last_addr.next = self.e_busy_q.q.val() & !self.rem_q.q.val().any();
         self.load.next =
             self.count_q.q.val().any() & (!self.e_busy_q.q.val() | self.last_addr.val());
+        // The pair after this one: the next two rays of the job, or the first two of the queue's head.
+        if self.load.val() {
+            self.pick_from.next = self.head_active.val();
+        } else {
+            self.pick_from.next = self.rem_q.q.val();
+        }
+        self.hot_a.next = self.pick_from.val() & (!self.pick_from.val() + self.one16.val());
+        self.rem_b.next = self.pick_from.val() & !self.hot_a.val();
+        self.hot_b.next = self.rem_b.val() & (!self.rem_b.val() + self.one16.val());
+        self.rem_next.next = self.rem_b.val() & !self.hot_b.val();
 
         // Registers: hold by default.
         self.head_q.d.next = self.head_q.q.val();
         self.tail_q.d.next = self.tail_q.q.val();
         self.e_busy_q.d.next = self.e_busy_q.q.val();
+        self.hot_a_q.d.next = self.hot_a_q.q.val();
+        self.hot_b_q.d.next = self.hot_b_q.q.val();
         self.rem_q.d.next = self.rem_q.q.val();
         self.e_set_q.d.next = self.e_set_q.q.val();
         self.e_tag_q.d.next = self.e_tag_q.q.val();
@@ -511,15 +533,16 @@ impl<const C: usize, const Q: usize, const Q3: usize, const PB: usize, const CB:
         self.mask_q.d.next = self.mask_q.q.val();
 
         // The engine addresses its job's next pair, and takes the queue's head when free.
-        if self.e_busy_q.q.val() {
+        if self.e_busy_q.q.val() | self.load.val() {
+            self.hot_a_q.d.next = self.hot_a.val();
+            self.hot_b_q.d.next = self.hot_b.val();
             self.rem_q.d.next = self.rem_next.val();
-            if self.last_addr.val() {
-                self.e_busy_q.d.next = false;
-            }
+        }
+        if self.last_addr.val() {
+            self.e_busy_q.d.next = false;
         }
         if self.load.val() {
             self.e_busy_q.d.next = true;
-            self.rem_q.d.next = self.head_active.val();
             self.e_set_q.d.next = self.head_set.val();
             self.e_tag_q.d.next = self.head_tag.val();
             for i in 0..3 {
