@@ -176,11 +176,14 @@ pub struct StreamCtl<
     head_set: Signal<Local, Bits<SET_BITS>>,
     head_lo: [Signal<Local, Bits<C>>; 3],
     head_hi: [Signal<Local, Bits<C>>; 3],
-    pick_from: Signal<Local, Bits<STREAM_RAYS>>,
-    hot_a: Signal<Local, Bits<STREAM_RAYS>>,
-    rem_b: Signal<Local, Bits<STREAM_RAYS>>,
-    hot_b: Signal<Local, Bits<STREAM_RAYS>>,
-    rem_next: Signal<Local, Bits<STREAM_RAYS>>,
+    /// The next pair and what is left after it, from the job's remaining rays (`_r`) and from the
+    /// queue's head (`_h`), both computed every clock and chosen by `load` at the end.
+    hot_a_r: Signal<Local, Bits<STREAM_RAYS>>,
+    rem_b_r: Signal<Local, Bits<STREAM_RAYS>>,
+    hot_b_r: Signal<Local, Bits<STREAM_RAYS>>,
+    hot_a_h: Signal<Local, Bits<STREAM_RAYS>>,
+    rem_b_h: Signal<Local, Bits<STREAM_RAYS>>,
+    hot_b_h: Signal<Local, Bits<STREAM_RAYS>>,
     set_base: Signal<Local, Bits<STREAM_ADDR_BITS>>,
     a_addr: Signal<Local, Bits<STREAM_ADDR_BITS>>,
     b_addr: Signal<Local, Bits<STREAM_ADDR_BITS>>,
@@ -300,11 +303,12 @@ impl<const C: usize, const Q: usize, const Q3: usize, const PB: usize, const CB:
             head_set: Default::default(),
             head_lo: Default::default(),
             head_hi: Default::default(),
-            pick_from: Default::default(),
-            hot_a: Default::default(),
-            rem_b: Default::default(),
-            hot_b: Default::default(),
-            rem_next: Default::default(),
+            hot_a_r: Default::default(),
+            rem_b_r: Default::default(),
+            hot_b_r: Default::default(),
+            hot_a_h: Default::default(),
+            rem_b_h: Default::default(),
+            hot_b_h: Default::default(),
             set_base: Default::default(),
             a_addr: Default::default(),
             b_addr: Default::default(),
@@ -486,16 +490,14 @@ impl<const C: usize, const Q: usize, const Q3: usize, const PB: usize, const CB:
         self.last_addr.next = self.e_busy_q.q.val() & !self.rem_q.q.val().any();
         self.load.next =
             self.count_q.q.val().any() & (!self.e_busy_q.q.val() | self.last_addr.val());
-        // The pair after this one: the next two rays of the job, or the first two of the queue's head.
-        if self.load.val() {
-            self.pick_from.next = self.head_active.val();
-        } else {
-            self.pick_from.next = self.rem_q.q.val();
-        }
-        self.hot_a.next = self.pick_from.val() & (!self.pick_from.val() + self.one16.val());
-        self.rem_b.next = self.pick_from.val() & !self.hot_a.val();
-        self.hot_b.next = self.rem_b.val() & (!self.rem_b.val() + self.one16.val());
-        self.rem_next.next = self.rem_b.val() & !self.hot_b.val();
+        // The pair after this one: the next two rays of the job, or the first two of the queue's head
+        // (both found every clock, so `load` only chooses between them).
+        self.hot_a_r.next = self.rem_q.q.val() & (!self.rem_q.q.val() + self.one16.val());
+        self.rem_b_r.next = self.rem_q.q.val() & !self.hot_a_r.val();
+        self.hot_b_r.next = self.rem_b_r.val() & (!self.rem_b_r.val() + self.one16.val());
+        self.hot_a_h.next = self.head_active.val() & (!self.head_active.val() + self.one16.val());
+        self.rem_b_h.next = self.head_active.val() & !self.hot_a_h.val();
+        self.hot_b_h.next = self.rem_b_h.val() & (!self.rem_b_h.val() + self.one16.val());
 
         // Registers: hold by default.
         self.head_q.d.next = self.head_q.q.val();
@@ -533,10 +535,14 @@ impl<const C: usize, const Q: usize, const Q3: usize, const PB: usize, const CB:
         self.mask_q.d.next = self.mask_q.q.val();
 
         // The engine addresses its job's next pair, and takes the queue's head when free.
-        if self.e_busy_q.q.val() | self.load.val() {
-            self.hot_a_q.d.next = self.hot_a.val();
-            self.hot_b_q.d.next = self.hot_b.val();
-            self.rem_q.d.next = self.rem_next.val();
+        if self.load.val() {
+            self.hot_a_q.d.next = self.hot_a_h.val();
+            self.hot_b_q.d.next = self.hot_b_h.val();
+            self.rem_q.d.next = self.rem_b_h.val() & !self.hot_b_h.val();
+        } else if self.e_busy_q.q.val() {
+            self.hot_a_q.d.next = self.hot_a_r.val();
+            self.hot_b_q.d.next = self.hot_b_r.val();
+            self.rem_q.d.next = self.rem_b_r.val() & !self.hot_b_r.val();
         }
         if self.last_addr.val() {
             self.e_busy_q.d.next = false;
