@@ -35,10 +35,13 @@
 //! the pair, and `ready` needs `resv_q < STREAM_QUEUE`, so the queue cannot overflow. The engine holds
 //! one job: each clock it addresses the next two active rays and loads the queue's head in the clock it
 //! addresses its job's last pair (or when idle). The pair it addresses is held in registers as one-hot
-//! masks, picked a clock ahead (from the job's remaining rays, or from the queue's head when it loads),
-//! so the store's read addresses decode registers and the two find-first-set chains end at registers,
-//! not at the store (the b12 processor over the 5-clock pair was limited there at 82.3 MHz on ECP5). Every input of the pair the datapath block forms from
-//! these outputs comes from a port, a register or a RAM output.
+//! masks, picked a clock ahead from the job's remaining rays or, when it loads, taken from the queue's
+//! head, whose active rays were split into their first pair and the rest when the bundle joined the
+//! queue. So the store's read addresses decode registers, and the find-first-set chains end at
+//! registers, never at the store or behind the queue's read (those paths limited the processors over
+//! the deep pairs on ECP5, at 82.3 MHz for b12 over the 5-clock pair and 75.2 for fp16 over the 13-clock
+//! one). Every input of the pair the datapath block forms from these outputs comes from a port, a
+//! register or a RAM output.
 
 use crate::cut::Line;
 use crate::TAG_BITS;
@@ -111,7 +114,11 @@ pub struct StreamCtl<
     l_hi: [Line<Bits<C>>; 3],
     // the split queue
     q_tag: [DFF<Bits<STREAM_TAG_BITS>>; Q],
-    q_active: [DFF<Bits<STREAM_RAYS>>; Q],
+    /// Entry `k`'s active rays as the engine takes them: its first pair (one-hot masks, B empty when
+    /// there is none) and the rays after it, split when the bundle joins the queue.
+    q_hot_a: [DFF<Bits<STREAM_RAYS>>; Q],
+    q_hot_b: [DFF<Bits<STREAM_RAYS>>; Q],
+    q_rest: [DFF<Bits<STREAM_RAYS>>; Q],
     q_set: [DFF<Bits<SET_BITS>>; Q],
     /// Entry `k`'s outer box, axis `i`, at `3k + i`.
     q_lo: [DFF<Bits<C>>; Q3],
@@ -125,7 +132,7 @@ pub struct StreamCtl<
     e_busy_q: DFF<Bit>,
     /// The pair the engine addresses this clock, as one-hot masks (ray B's empty when there is none),
     /// and the job's active rays after it: registered so that the store's addresses come straight from
-    /// registers (the next pair is picked a clock ahead, from `rem_q` or the queue's head).
+    /// registers (the next pair is picked a clock ahead, from `rem_q` or the queue's head's split).
     hot_a_q: DFF<Bits<STREAM_RAYS>>,
     hot_b_q: DFF<Bits<STREAM_RAYS>>,
     rem_q: DFF<Bits<STREAM_RAYS>>,
@@ -172,7 +179,9 @@ pub struct StreamCtl<
     // logic
     take_l: Signal<Local, Bit>,
     head_tag: Signal<Local, Bits<STREAM_TAG_BITS>>,
-    head_active: Signal<Local, Bits<STREAM_RAYS>>,
+    head_hot_a: Signal<Local, Bits<STREAM_RAYS>>,
+    head_hot_b: Signal<Local, Bits<STREAM_RAYS>>,
+    head_rest: Signal<Local, Bits<STREAM_RAYS>>,
     head_set: Signal<Local, Bits<SET_BITS>>,
     head_lo: [Signal<Local, Bits<C>>; 3],
     head_hi: [Signal<Local, Bits<C>>; 3],
@@ -181,9 +190,9 @@ pub struct StreamCtl<
     hot_a_r: Signal<Local, Bits<STREAM_RAYS>>,
     rem_b_r: Signal<Local, Bits<STREAM_RAYS>>,
     hot_b_r: Signal<Local, Bits<STREAM_RAYS>>,
-    hot_a_h: Signal<Local, Bits<STREAM_RAYS>>,
-    rem_b_h: Signal<Local, Bits<STREAM_RAYS>>,
-    hot_b_h: Signal<Local, Bits<STREAM_RAYS>>,
+    push_hot_a: Signal<Local, Bits<STREAM_RAYS>>,
+    push_rem_b: Signal<Local, Bits<STREAM_RAYS>>,
+    push_hot_b: Signal<Local, Bits<STREAM_RAYS>>,
     set_base: Signal<Local, Bits<STREAM_ADDR_BITS>>,
     a_addr: Signal<Local, Bits<STREAM_ADDR_BITS>>,
     b_addr: Signal<Local, Bits<STREAM_ADDR_BITS>>,
@@ -251,7 +260,9 @@ impl<const C: usize, const Q: usize, const Q3: usize, const PB: usize, const CB:
             l_lo: Line::array(latency),
             l_hi: Line::array(latency),
             q_tag: std::array::from_fn(|_| Default::default()),
-            q_active: std::array::from_fn(|_| Default::default()),
+            q_hot_a: std::array::from_fn(|_| Default::default()),
+            q_hot_b: std::array::from_fn(|_| Default::default()),
+            q_rest: std::array::from_fn(|_| Default::default()),
             q_set: std::array::from_fn(|_| Default::default()),
             q_lo: std::array::from_fn(|_| Default::default()),
             q_hi: std::array::from_fn(|_| Default::default()),
@@ -299,16 +310,18 @@ impl<const C: usize, const Q: usize, const Q3: usize, const PB: usize, const CB:
             kind_last: Constant::new(bits(KIND_LAST)),
             take_l: Default::default(),
             head_tag: Default::default(),
-            head_active: Default::default(),
+            head_hot_a: Default::default(),
+            head_hot_b: Default::default(),
+            head_rest: Default::default(),
             head_set: Default::default(),
             head_lo: Default::default(),
             head_hi: Default::default(),
             hot_a_r: Default::default(),
             rem_b_r: Default::default(),
             hot_b_r: Default::default(),
-            hot_a_h: Default::default(),
-            rem_b_h: Default::default(),
-            hot_b_h: Default::default(),
+            push_hot_a: Default::default(),
+            push_rem_b: Default::default(),
+            push_hot_b: Default::default(),
             set_base: Default::default(),
             a_addr: Default::default(),
             b_addr: Default::default(),
@@ -353,7 +366,9 @@ impl<const C: usize, const Q: usize, const Q3: usize, const PB: usize, const CB:
         }
         for k in 0..Q {
             self.q_tag[k].clock.next = self.clock.val();
-            self.q_active[k].clock.next = self.clock.val();
+            self.q_hot_a[k].clock.next = self.clock.val();
+            self.q_hot_b[k].clock.next = self.clock.val();
+            self.q_rest[k].clock.next = self.clock.val();
             self.q_set[k].clock.next = self.clock.val();
         }
         for k in 0..Q3 {
@@ -437,7 +452,9 @@ impl<const C: usize, const Q: usize, const Q3: usize, const PB: usize, const CB:
 
         // The queue's head.
         self.head_tag.next = self.q_tag[0].q.val();
-        self.head_active.next = self.q_active[0].q.val();
+        self.head_hot_a.next = self.q_hot_a[0].q.val();
+        self.head_hot_b.next = self.q_hot_b[0].q.val();
+        self.head_rest.next = self.q_rest[0].q.val();
         self.head_set.next = self.q_set[0].q.val();
         for i in 0..3 {
             self.head_lo[i].next = self.q_lo[i].q.val();
@@ -446,7 +463,9 @@ impl<const C: usize, const Q: usize, const Q3: usize, const PB: usize, const CB:
         for k in 1..Q {
             if self.head_q.q.val() == self.slot_k[k].val() {
                 self.head_tag.next = self.q_tag[k].q.val();
-                self.head_active.next = self.q_active[k].q.val();
+                self.head_hot_a.next = self.q_hot_a[k].q.val();
+                self.head_hot_b.next = self.q_hot_b[k].q.val();
+                self.head_rest.next = self.q_rest[k].q.val();
                 self.head_set.next = self.q_set[k].q.val();
                 for i in 0..3 {
                     self.head_lo[i].next = self.q_lo[3 * k + i].q.val();
@@ -490,14 +509,15 @@ impl<const C: usize, const Q: usize, const Q3: usize, const PB: usize, const CB:
         self.last_addr.next = self.e_busy_q.q.val() & !self.rem_q.q.val().any();
         self.load.next =
             self.count_q.q.val().any() & (!self.e_busy_q.q.val() | self.last_addr.val());
-        // The pair after this one: the next two rays of the job, or the first two of the queue's head
-        // (both found every clock, so `load` only chooses between them).
+        // The pair after this one: the next two rays of the job, or the queue head's first pair (split
+        // when it joined the queue), so `load` only chooses between them.
         self.hot_a_r.next = self.rem_q.q.val() & (!self.rem_q.q.val() + self.one16.val());
         self.rem_b_r.next = self.rem_q.q.val() & !self.hot_a_r.val();
         self.hot_b_r.next = self.rem_b_r.val() & (!self.rem_b_r.val() + self.one16.val());
-        self.hot_a_h.next = self.head_active.val() & (!self.head_active.val() + self.one16.val());
-        self.rem_b_h.next = self.head_active.val() & !self.hot_a_h.val();
-        self.hot_b_h.next = self.rem_b_h.val() & (!self.rem_b_h.val() + self.one16.val());
+        // A bundle joining the queue: its first pair and the rest.
+        self.push_hot_a.next = self.l_active.q.val() & (!self.l_active.q.val() + self.one16.val());
+        self.push_rem_b.next = self.l_active.q.val() & !self.push_hot_a.val();
+        self.push_hot_b.next = self.push_rem_b.val() & (!self.push_rem_b.val() + self.one16.val());
 
         // Registers: hold by default.
         self.head_q.d.next = self.head_q.q.val();
@@ -516,7 +536,9 @@ impl<const C: usize, const Q: usize, const Q3: usize, const PB: usize, const CB:
         }
         for k in 0..Q {
             self.q_tag[k].d.next = self.q_tag[k].q.val();
-            self.q_active[k].d.next = self.q_active[k].q.val();
+            self.q_hot_a[k].d.next = self.q_hot_a[k].q.val();
+            self.q_hot_b[k].d.next = self.q_hot_b[k].q.val();
+            self.q_rest[k].d.next = self.q_rest[k].q.val();
             self.q_set[k].d.next = self.q_set[k].q.val();
         }
         for k in 0..Q3 {
@@ -536,9 +558,9 @@ impl<const C: usize, const Q: usize, const Q3: usize, const PB: usize, const CB:
 
         // The engine addresses its job's next pair, and takes the queue's head when free.
         if self.load.val() {
-            self.hot_a_q.d.next = self.hot_a_h.val();
-            self.hot_b_q.d.next = self.hot_b_h.val();
-            self.rem_q.d.next = self.rem_b_h.val() & !self.hot_b_h.val();
+            self.hot_a_q.d.next = self.head_hot_a.val();
+            self.hot_b_q.d.next = self.head_hot_b.val();
+            self.rem_q.d.next = self.head_rest.val();
         } else if self.e_busy_q.q.val() {
             self.hot_a_q.d.next = self.hot_a_r.val();
             self.hot_b_q.d.next = self.hot_b_r.val();
@@ -563,7 +585,9 @@ impl<const C: usize, const Q: usize, const Q3: usize, const PB: usize, const CB:
             for k in 0..Q {
                 if self.tail_q.q.val() == self.slot_k[k].val() {
                     self.q_tag[k].d.next = self.l_tag.q.val();
-                    self.q_active[k].d.next = self.l_active.q.val();
+                    self.q_hot_a[k].d.next = self.push_hot_a.val();
+                    self.q_hot_b[k].d.next = self.push_hot_b.val();
+                    self.q_rest[k].d.next = self.push_rem_b.val() & !self.push_hot_b.val();
                     self.q_set[k].d.next = self.l_set.q.val();
                     for i in 0..3 {
                         self.q_lo[3 * k + i].d.next = self.l_lo[i].q.val();
