@@ -523,12 +523,14 @@ mod tests {
                 .iter()
                 .map(|r| dir_scale_exp(r.dir))
                 .collect::<Vec<_>>();
-            if unit.iter().all(|&j| j == unit[0]) {
-                assert_eq!(
-                    run(&rays, &path, Rebound::Stored).unwrap(),
-                    run(&rays, &path, Rebound::World).unwrap()
-                );
-            }
+            assert!(
+                unit.iter().all(|&j| j == unit[0]),
+                "the room's camera rays share one direction exponent"
+            );
+            assert_eq!(
+                run(&rays, &path, Rebound::Stored).unwrap(),
+                run(&rays, &path, Rebound::World).unwrap()
+            );
             let stored = run(&long_and_short, &path, Rebound::Stored).unwrap();
             let world = run(&long_and_short, &path, Rebound::World).unwrap();
             assert!(stored.decided > 0 && stored.tests > 0, "{stored:?}");

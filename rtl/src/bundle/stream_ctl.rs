@@ -185,8 +185,9 @@ pub struct StreamCtl<
     head_set: Signal<Local, Bits<SET_BITS>>,
     head_lo: [Signal<Local, Bits<C>>; 3],
     head_hi: [Signal<Local, Bits<C>>; 3],
-    /// The next pair and what is left after it, from the job's remaining rays (`_r`) and from the
-    /// queue's head (`_h`), both computed every clock and chosen by `load` at the end.
+    /// The next pair of the job's remaining rays and what is left after it (`_r`), found every clock;
+    /// `load` chooses between it and the queue head's pair, which was split as the bundle joined the
+    /// queue (`push_`).
     hot_a_r: Signal<Local, Bits<STREAM_RAYS>>,
     rem_b_r: Signal<Local, Bits<STREAM_RAYS>>,
     hot_b_r: Signal<Local, Bits<STREAM_RAYS>>,
