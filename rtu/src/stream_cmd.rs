@@ -38,19 +38,28 @@ pub struct Args {
     /// Seed of the scenes and the secondary rays.
     #[arg(long, default_value_t = 1)]
     seed: u64,
+    /// Re-bounding rules, comma-separated: `keep` (children get their parent's bundle) and `stored`
+    /// (children get the bundle the processor re-bounds around the rays kept).
+    #[arg(long, default_value = "keep,stored")]
+    rebound: String,
 }
 
 /// CSV header of `bundle_stream.csv`.
-pub const CSV_HEADER: &str = "scene,rays,bundling,format,bundles,jobs,decided,clocks,busy_clocks,model_pair_cycles,utilisation,clocks_per_job,decided_stream_jobs,decided_stream_clocks,decided_tests_per_clock,one_job_clocks,speedup_vs_one_job";
+pub const CSV_HEADER: &str = "scene,rays,bundling,format,rebound,bundles,jobs,decided,clocks,busy_clocks,model_pair_cycles,utilisation,clocks_per_job,decided_stream_jobs,decided_stream_clocks,decided_tests_per_clock,one_job_clocks,speedup_vs_one_job";
 
+/// The closed-loop and the decided-only runs of `trees`, on a thread with a big stack (the processor's
+/// block is large).
 fn replay<S: BundleStreamIo<Dp = BundleFixFormat>>(
     bf: &BundleFixFormat,
     trees: &JobTrees,
     pb: &ProgressBar,
 ) -> Result<(StreamRun, StreamRun), String> {
-    let r = run_trees(bf, trees, &mut StreamRtl::<S>::new(bf), || pb.inc(1))?;
-    let d = run_decided(bf, trees, &mut StreamRtl::<S>::new(bf))?;
-    Ok((r, d))
+    let (bf, trees, pb) = (*bf, trees.clone(), pb.clone());
+    tb::plane::float::with_big_stack(move || {
+        let r = run_trees(&bf, &trees, &mut StreamRtl::<S>::new(&bf), || pb.inc(1))?;
+        let d = run_decided(&bf, &trees, &mut StreamRtl::<S>::new(&bf))?;
+        Ok((r, d))
+    })
 }
 
 /// Runs the measurement; returns the markdown table, writes `bundle_stream.csv` and `.md` under `out`.
@@ -85,28 +94,43 @@ pub fn run(a: &Args, out: &Path) -> Result<String, String> {
             a.tile, a.builder
         ));
     }
+    let rules = list(&a.rebound, |r| match r {
+        "keep" => Ok(false),
+        "stored" => Ok(true),
+        _ => Err(format!(
+            "--rebound `{r}`: the processor's rules are keep and stored"
+        )),
+    })?;
     let mut csv = format!("{CSV_HEADER}\n");
     let mut table = String::from(
-        "| scene | rays | bundling | bundles | jobs | decided | clocks | pair busy (= model) | utilisation | clocks / job | decided jobs alone: tests / clock | one-job processor: clocks (x) |\n|---|---|---|---|---|---|---|---|---|---|---|---|\n",
+        "| scene | rays | bundling | rebound | bundles | jobs | decided | clocks | pair busy (= model) | utilisation | clocks / job | decided jobs alone: tests / clock | one-job processor: clocks (x) |\n|---|---|---|---|---|---|---|---|---|---|---|---|---|\n",
     );
     for name in &names {
         let sc = crate::sweep_cmd::load_scene(name, a.seed)?;
-        let streams = scene_streams(
-            &sc,
-            a.seed,
-            (a.width, a.height),
-            a.tile,
-            (rays, spread),
-            &bf,
-        )
-        .map_err(|e| format!("{name}: {e}"))?;
-        for (set, bundling, trees) in &streams {
+        let mut streams = vec![];
+        for &rb in &rules {
+            let s = scene_streams(
+                &sc,
+                a.seed,
+                (a.width, a.height),
+                a.tile,
+                (rays, spread),
+                &bf,
+                rb,
+            )
+            .map_err(|e| format!("{name}: {e}"))?;
+            streams.extend(s.into_iter().map(|s| (rb, s)));
+        }
+        // Each ray set with either rule, side by side.
+        streams.sort_by_key(|(rb, (set, ..))| (*set != "primary", *set != "bounce", *rb));
+        for (rb, (set, bundling, trees)) in &streams {
+            let rule = if *rb { "stored" } else { "keep" };
             let pb = ProgressBar::new(trees.bundles.len() as u64);
             pb.set_style(
                 ProgressStyle::with_template("{msg:40} {bar:30} {pos}/{len} eta {eta}")
                     .expect("template"),
             );
-            pb.set_message(format!("{name} {set} {bundling}"));
+            pb.set_message(format!("{name} {set} {bundling} {rule}"));
             let (r, d) = match preset {
                 0 => replay::<rtl::BundleStreamB8>(&bf, trees, &pb),
                 1 => replay::<rtl::BundleStreamB12>(&bf, trees, &pb),
@@ -120,7 +144,7 @@ pub fn run(a: &Args, out: &Path) -> Result<String, String> {
             let dt = d.jobs as f64 / d.clocks.max(1) as f64;
             let _ = writeln!(
                 csv,
-                "{name},{set},{bundling},{},{},{},{},{},{},{},{:.4},{:.4},{},{},{:.4},{},{:.3}",
+                "{name},{set},{bundling},{},{rule},{},{},{},{},{},{},{:.4},{:.4},{},{},{:.4},{},{:.3}",
                 a.format,
                 r.bundles,
                 r.jobs,
@@ -138,7 +162,7 @@ pub fn run(a: &Args, out: &Path) -> Result<String, String> {
             );
             let _ = writeln!(
                 table,
-                "| {name} | {set} | {bundling} | {} | {} | {} | {} | {} | {:.3} | {:.2} | {:.3} | {} ({:.2}x) |",
+                "| {name} | {set} | {bundling} | {rule} | {} | {} | {} | {} | {} | {:.3} | {:.2} | {:.3} | {} ({:.2}x) |",
                 r.bundles,
                 r.jobs,
                 r.decided,

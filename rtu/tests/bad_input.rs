@@ -364,8 +364,8 @@ fn intervals_beyond_the_f64_range_round_outward_in_every_format() {
     }
 }
 
-/// `rtu bundle-stream` refuses bundles the ray store cannot hold and formats it is not built over,
-/// naming the option, and writes nothing.
+/// `rtu bundle-stream` refuses bundles the ray store cannot hold, formats it is not built over and
+/// re-bounding rules it does not follow, naming the option, and writes nothing.
 #[test]
 fn bundle_stream_options_out_of_range_are_errors() {
     let d = Dir::new("bundle-stream");
@@ -376,6 +376,7 @@ fn bundle_stream_options_out_of_range_are_errors() {
         (vec!["--builder", "16"], "--builder `16`"),
         (vec!["--format", "g10"], "built over b8, b12 and b16"),
         (vec!["--format", "b9"], "--format b9"),
+        (vec!["--rebound", "world"], "--rebound `world`"),
     ] {
         let mut a = vec!["--out", &out, "bundle-stream", "--scenes", "room"];
         a.extend(&args);

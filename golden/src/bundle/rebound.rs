@@ -16,7 +16,8 @@
 //! and brings the other one onto it ([`ScaledBundle::rescaled`], `s = j - j'` bits):
 //! - direction codes shift right by `s`, `d_lo` rounding down (an arithmetic shift) and `d_hi` up;
 //! - t codes shift left by `s` (exact), saturating at the largest finite code for `t_lo` and at `+inf`
-//!   for `t_hi`; the `+inf` code stays `+inf`;
+//!   for `t_hi`; the `+inf` code stays `+inf`, and a negative code (never a quantised ray's) stays as it
+//!   is;
 //! - origin codes are on the grid already.
 //!
 //! then takes `min` of every `lo` and `max` of every `hi`. [`rebound_fix`] folds the kept rays in any
@@ -34,6 +35,15 @@ use crate::bundle::edge::Bundle;
 use crate::bundle::fix::{bundle_dir_exp, quantize_bundle, BundleFixFormat, FixBundle};
 use crate::error::Error;
 use crate::format::fixed::GridMap;
+
+/// Bits of a direction exponent `j` on a processor's ports (two's complement): `-128..=127`, directions
+/// whose largest component is within `2^-127 .. 2^128`.
+pub const J_BITS: usize = 8;
+
+/// Whether `j` fits [`J_BITS`].
+pub fn j_fits(j: i32) -> bool {
+    (-(1 << (J_BITS - 1))..1 << (J_BITS - 1)).contains(&j)
+}
 
 /// A bundle (or one ray's tiny bundle) on the fixed datapath with the exponent `j` of its direction
 /// scale `2^j`; see the module documentation.
@@ -66,13 +76,14 @@ fn shr_ceil(x: i64, s: u32) -> i64 {
 }
 
 /// `t * 2^s` for a t code `0 <= t`, the `+inf` code `pinf` kept; a finite result past the finite codes
-/// becomes `sat`.
+/// becomes `sat`. A negative code (quantisation never yields one: a ray's t values are `>= 0`; raw codes
+/// may hold one) is kept as it is, so that the rule is defined, and monotone, for every code.
 fn shl_t(t: i64, s: u32, pinf: i64, sat: i64) -> i64 {
     if t >= pinf {
         return pinf;
     }
-    if t == 0 {
-        return 0;
+    if t <= 0 {
+        return t;
     }
     match t.checked_shl(s) {
         Some(v) if s < 63 && v >> s == t && v < pinf => v,
@@ -173,6 +184,8 @@ mod tests {
         assert_eq!(shl_t(pinf, 1, pinf, pinf - 1), pinf);
         assert_eq!(shl_t(1, 64, pinf, pinf), pinf);
         assert_eq!(shl_t(0, 64, pinf, pinf - 1), 0);
+        assert_eq!(shl_t(-3, 2, pinf, pinf - 1), -3);
+        assert_eq!(shl_t(-pinf - 1, 5, pinf, pinf), -pinf - 1);
     }
 
     /// Against re-bounding in world units, on BundleGen cases with random subsets kept: the same exponent,

@@ -21,7 +21,11 @@
 //! - The pair's answer `L` clocks after entry: a decided bundle, or one with no active ray, reports in
 //!   the next clock (`done`); an undecided one joins the split queue (visible the next clock). Ray
 //!   answers are ORed into one accumulator (ray pairs come back in the order they went, one job after
-//!   another); the job's last pair reports.
+//!   another); the job's last pair reports. Each ray rides beside the pair as it was read from the
+//!   store; the kept ones (answer "may hit") are folded into the job's re-bounded bundle
+//!   ([`PairDatapath::gather`]: on the fixed datapath the hull of [`crate::bundle::rebound`], whose fold
+//!   is associative and commutative, so the block may gather a pair's two rays first), which reports
+//!   with the job.
 //! - The engine holds one job: each clock it addresses the next two active rays in the store (indices
 //!   and set), and loads the queue's head in the clock it addresses its job's last pair (or whenever it
 //!   is idle), so that consecutive split jobs issue without a gap.
@@ -37,6 +41,7 @@
 use crate::bundle::edge::BoxPair;
 use crate::bundle::fix::{all_hit_fix, all_miss_fix, BundleFixFormat, FixBundle};
 use crate::bundle::float::{all_hit_float, all_miss_float, FloatBundle};
+use crate::bundle::rebound::ScaledBundle;
 use crate::format::fixed::FixBox;
 use crate::format::float::FloatFormat;
 use crate::slab::float::FloatBox;
@@ -65,18 +70,25 @@ pub const STREAM_TAG_BITS: usize = 8;
 
 /// A datapath of the pair, as the results processor uses it.
 pub trait PairDatapath {
-    /// A bundle (or a ray, as a tiny bundle) in the datapath's format.
+    /// A bundle in the datapath's format.
     type Bundle: Copy + Default + std::fmt::Debug + PartialEq + Send + Sync + 'static;
+    /// A ray as the ray store holds it: its tiny bundle, and on the fixed datapath its direction
+    /// exponent (for re-bounding).
+    type Ray: Copy + Default + std::fmt::Debug + PartialEq + Send + Sync + 'static;
     /// A box in the datapath's format.
     type Box: Copy + Default + std::fmt::Debug + PartialEq + Send + Sync + 'static;
     /// The bundle test: `(all_hit, all_miss)`.
     fn decide(&self, b: &Self::Bundle, boxes: &BoxPair<Self::Box>) -> (bool, bool);
     /// The two-ray mode answer for one ray: it may hit the outer box.
-    fn may_hit(&self, ray: &Self::Bundle, outer: &Self::Box) -> bool;
+    fn may_hit(&self, ray: &Self::Ray, outer: &Self::Box) -> bool;
+    /// The re-bounded bundle gathered so far, `acc`, with the kept ray `ray` folded in; `None` on a
+    /// datapath whose processor does not re-bound (the float one).
+    fn gather(&self, acc: Option<ScaledBundle>, ray: &Self::Ray) -> Option<ScaledBundle>;
 }
 
 impl PairDatapath for BundleFixFormat {
     type Bundle = FixBundle;
+    type Ray = ScaledBundle;
     type Box = FixBox;
     fn decide(&self, b: &FixBundle, boxes: &BoxPair<FixBox>) -> (bool, bool) {
         (
@@ -84,13 +96,18 @@ impl PairDatapath for BundleFixFormat {
             all_miss_fix(self, b, &boxes.outer),
         )
     }
-    fn may_hit(&self, ray: &FixBundle, outer: &FixBox) -> bool {
-        !all_miss_fix(self, ray, outer)
+    fn may_hit(&self, ray: &ScaledBundle, outer: &FixBox) -> bool {
+        !all_miss_fix(self, &ray.q, outer)
+    }
+    /// [`ScaledBundle::hull`], the rule of [`crate::bundle::rebound`].
+    fn gather(&self, acc: Option<ScaledBundle>, ray: &ScaledBundle) -> Option<ScaledBundle> {
+        Some(acc.map_or(*ray, |a| a.hull(self, ray)))
     }
 }
 
 impl PairDatapath for FloatFormat {
     type Bundle = FloatBundle;
+    type Ray = FloatBundle;
     type Box = FloatBox;
     fn decide(&self, b: &FloatBundle, boxes: &BoxPair<FloatBox>) -> (bool, bool) {
         (
@@ -101,10 +118,14 @@ impl PairDatapath for FloatFormat {
     fn may_hit(&self, ray: &FloatBundle, outer: &FloatBox) -> bool {
         !all_miss_float(self, ray, outer)
     }
+    fn gather(&self, _: Option<ScaledBundle>, _: &FloatBundle) -> Option<ScaledBundle> {
+        None
+    }
 }
 
 /// The clock's inputs of a processor over datapath `P`.
-pub type StreamInOf<P> = StreamIn<<P as PairDatapath>::Bundle, <P as PairDatapath>::Box>;
+pub type StreamInOf<P> =
+    StreamIn<<P as PairDatapath>::Bundle, <P as PairDatapath>::Box, <P as PairDatapath>::Ray>;
 /// A job of a processor over datapath `P`.
 pub type StreamJobOf<P> = StreamJob<<P as PairDatapath>::Bundle, <P as PairDatapath>::Box>;
 
@@ -121,11 +142,11 @@ pub struct StreamJob<B, X> {
     pub tag: u8,
 }
 
-/// The inputs of one clock.
+/// The inputs of one clock (`R`: a ray as the store holds it, [`PairDatapath::Ray`]).
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Default)]
-pub struct StreamIn<B, X> {
+pub struct StreamIn<B, X, R = B> {
     /// `(set, index, ray)`: a ray store write.
-    pub write: Option<(u8, u8, B)>,
+    pub write: Option<(u8, u8, R)>,
     /// `start` high with the job (taken only when `ready`).
     pub start: Option<StreamJob<B, X>>,
     /// `rst` high.
@@ -142,11 +163,15 @@ pub struct StreamOut {
     pub all_miss: bool,
     pub split: bool,
     pub mask: u16,
+    /// The re-bounded bundle of a split job's kept rays ([`PairDatapath::gather`] over the rays whose
+    /// `mask` bit is set, as they were read from the store); `None` for a decided job, a split one
+    /// that kept no ray, and on the float datapath.
+    pub rebound: Option<ScaledBundle>,
 }
 
 /// What enters the pair in one clock, with its answer.
 #[derive(Clone, Copy, Debug)]
-enum Entry<X> {
+enum Entry<R, X> {
     Bundle {
         tag: u8,
         active: u16,
@@ -157,10 +182,10 @@ enum Entry<X> {
     },
     Rays {
         tag: u8,
-        /// Ray A's index and answer.
-        a: (u8, bool),
+        /// Ray A's index and answer, and the ray (which rides beside the pair for re-bounding).
+        a: (u8, bool, R),
         /// Ray B's, when present.
-        b: Option<(u8, bool)>,
+        b: Option<(u8, bool, R)>,
         last: bool,
     },
 }
@@ -189,15 +214,17 @@ struct Issue<B, X> {
 #[derive(Clone, Debug)]
 pub struct StreamModel<P: PairDatapath> {
     pair: P,
-    store: Vec<[P::Bundle; STREAM_RAYS]>,
+    store: Vec<[P::Ray; STREAM_RAYS]>,
     /// The pair's contents: `line[0]` entered in the last clock, `line[latency - 1]` answers now.
-    line: VecDeque<Option<Entry<P::Box>>>,
+    line: VecDeque<Option<Entry<P::Ray, P::Box>>>,
     queue: VecDeque<Queued<P::Box>>,
     /// Entries of the split queue ([`stream_queue`] of the latency).
     queue_len: usize,
     engine: Option<Queued<P::Box>>,
-    issue: Option<Issue<P::Bundle, P::Box>>,
+    issue: Option<Issue<P::Ray, P::Box>>,
     acc: u16,
+    /// The re-bounded bundle of the kept rays answered so far of the job being answered.
+    hull: Option<ScaledBundle>,
     out: StreamOut,
     /// Clocks the pair's input was used, and clocks run.
     pub busy_clocks: u64,
@@ -218,13 +245,14 @@ impl<P: PairDatapath> StreamModel<P> {
         assert!(latency >= 1, "the pair takes at least one clock");
         StreamModel {
             pair,
-            store: vec![[P::Bundle::default(); STREAM_RAYS]; STREAM_SETS],
+            store: vec![[P::Ray::default(); STREAM_RAYS]; STREAM_SETS],
             line: (0..latency).map(|_| None).collect(),
             queue: VecDeque::new(),
             queue_len: stream_queue(latency),
             engine: None,
             issue: None,
             acc: 0,
+            hull: None,
             out: StreamOut {
                 ready: true,
                 ..Default::default()
@@ -257,15 +285,15 @@ impl<P: PairDatapath> StreamModel<P> {
     }
 
     /// One clock with `input`; afterwards [`StreamModel::outputs`] are the next clock's.
-    pub fn step(&mut self, input: &StreamIn<P::Bundle, P::Box>) {
+    pub fn step(&mut self, input: &StreamInOf<P>) {
         let take = self.ready() && !input.reset && input.start.is_some();
         // The pair's input in this clock.
         let entering = if let Some(is) = self.issue {
             self.busy_clocks += 1;
             Some(Entry::Rays {
                 tag: is.tag,
-                a: (is.a.0, self.pair.may_hit(&is.a.1, &is.outer)),
-                b: is.b.map(|(i, r)| (i, self.pair.may_hit(&r, &is.outer))),
+                a: (is.a.0, self.pair.may_hit(&is.a.1, &is.outer), is.a.1),
+                b: is.b.map(|(i, r)| (i, self.pair.may_hit(&r, &is.outer), r)),
                 last: is.last,
             })
         } else if take {
@@ -298,7 +326,8 @@ impl<P: PairDatapath> StreamModel<P> {
                 all_miss,
             }) => {
                 if all_hit || all_miss || active == 0 {
-                    done = Some((tag, all_hit, all_miss, if all_hit { active } else { 0 }));
+                    let mask = if all_hit { active } else { 0 };
+                    done = Some((tag, all_hit, all_miss, mask, None));
                 } else {
                     push = Some(Queued {
                         tag,
@@ -309,10 +338,16 @@ impl<P: PairDatapath> StreamModel<P> {
                 }
             }
             Some(Entry::Rays { tag, a, b, last }) => {
-                let got = (a.1 as u16) << a.0 | b.map_or(0, |(i, m)| (m as u16) << i);
+                let got = (a.1 as u16) << a.0 | b.map_or(0, |(i, m, _)| (m as u16) << i);
+                for (_, kept, r) in [Some(a), b].into_iter().flatten() {
+                    if kept {
+                        self.hull = self.pair.gather(self.hull, &r);
+                    }
+                }
                 if last {
-                    done = Some((tag, false, false, self.acc | got));
+                    done = Some((tag, false, false, self.acc | got, self.hull));
                     self.acc = 0;
+                    self.hull = None;
                 } else {
                     self.acc |= got;
                 }
@@ -356,7 +391,7 @@ impl<P: PairDatapath> StreamModel<P> {
             self.store[set as usize % STREAM_SETS][i as usize % STREAM_RAYS] = r;
         }
         self.out.done = false;
-        if let Some((tag, all_hit, all_miss, mask)) = done {
+        if let Some((tag, all_hit, all_miss, mask, rebound)) = done {
             self.out = StreamOut {
                 ready: false,
                 done: true,
@@ -365,6 +400,7 @@ impl<P: PairDatapath> StreamModel<P> {
                 all_miss,
                 split: !(all_hit || all_miss),
                 mask,
+                rebound,
             };
         }
         if input.reset {
@@ -373,6 +409,7 @@ impl<P: PairDatapath> StreamModel<P> {
             self.engine = None;
             self.issue = None;
             self.acc = 0;
+            self.hull = None;
             self.out.done = false;
         }
         self.clocks += 1;
@@ -388,12 +425,16 @@ mod tests {
     struct Toy;
     impl PairDatapath for Toy {
         type Bundle = (bool, bool);
+        type Ray = (bool, bool);
         type Box = u8;
         fn decide(&self, b: &(bool, bool), _: &BoxPair<u8>) -> (bool, bool) {
             *b
         }
         fn may_hit(&self, r: &(bool, bool), _: &u8) -> bool {
             r.0
+        }
+        fn gather(&self, _: Option<ScaledBundle>, _: &(bool, bool)) -> Option<ScaledBundle> {
+            None
         }
     }
 

@@ -12,6 +12,7 @@
 //! | [`stream_ctl::StreamCtl`] | `bundle/stream_ctl.rs` | the control of both streaming processors |
 //! | [`stream_float::BundleStreamFloat`] | `bundle/stream_float.rs` | the same around the float pair, `golden::bundle::stream` |
 //! | [`ray_store::RayStore`] | `bundle/ray_store.rs` | the two-bank ray store of both processors |
+//! | [`rebound::ReboundAcc`] | `bundle/rebound.rs` | re-bounding in the fixed streaming processor, `golden::bundle::rebound` |
 //!
 //! Which configurations exist: [`registry`].
 
@@ -23,6 +24,7 @@ pub mod fold_diff;
 pub mod pair_fix;
 pub mod pair_float;
 pub mod ray_store;
+pub mod rebound;
 pub mod registry;
 pub mod split;
 pub mod stream;

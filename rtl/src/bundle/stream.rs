@@ -5,8 +5,12 @@
 //! its tag. **Results may leave in another order than the jobs came**: a decided job overtakes split
 //! ones; split jobs leave in the order their bundles were answered.
 //!
-//! Clock for clock `golden::bundle::stream::StreamModel` (ready, done, tag, result, in every clock, for
-//! any input); what a job computes is `golden::bundle::split::split_fix` on its rays.
+//! While a split job's rays stream through the pair, the block gathers the bundle around the rays it
+//! keeps (re-bounding, [`crate::bundle::rebound::ReboundAcc`]) and reports it with the job.
+//!
+//! Clock for clock `golden::bundle::stream::StreamModel` (ready, done, tag, result, the re-bounded
+//! bundle, in every clock, for any input); what a job computes is `golden::bundle::split::split_fix` on
+//! its rays, and its re-bounded bundle `golden::bundle::rebound::rebound_fix` of the rays kept.
 //!
 //! # Parameters
 //! `G`, `V = G + 1`, `D = FD + 3`, `T`, `CUTS`, as [`BundleFix`]; presets [`crate::BundleStreamB8`],
@@ -21,7 +25,9 @@
 //!   store and the result registers keep their contents);
 //! - ray store write port: `ray_we`, `ray_addr` (6 bits: `[5:4]` the set, `[3:0]` the ray), `ray_o_lo`,
 //!   `ray_o_hi`, `ray_d_lo`, `ray_d_hi` (arrays over x, y, z), `ray_t` (the ray's `t_hi`): the ray as a
-//!   quantised tiny bundle, as `BundleSplit`'s. Written at the end of the clock, at any time;
+//!   quantised tiny bundle, as `BundleSplit`'s; and for re-bounding `ray_t_lo` (its `t_lo`) and `ray_j`
+//!   (its direction exponent, [`J_BITS`] bits, two's complement). Written at the end of the clock, at
+//!   any time;
 //! - job port: `start` (taken when `ready`), the bundle `o_lo`, `o_hi`, `d_lo`, `d_hi`, `t_lo`, `t_hi`,
 //!   the inner box `in_lo`, `in_hi`, the outer box `out_lo`, `out_hi`, `active` (16 bits: rays of the
 //!   set to test if the bundle is undecided), `job_set` (2 bits: the ray set; `set` is a reserved word
@@ -35,7 +41,9 @@
 //! - `ready`: a `start` in this clock is taken. Low in the clocks the pair takes a ray pair, and while
 //!   the split queue could not hold every bundle in flight plus one;
 //! - `done`: one-clock pulse; with it, and held until the next `done`: `done_tag` (the job's `tag`),
-//!   `all_hit`, `all_miss`, `split`, `mask` (16 bits, bit `i`: ray `i` may hit), as `BundleSplit`'s.
+//!   `all_hit`, `all_miss`, `split`, `mask` (16 bits, bit `i`: ray `i` may hit), as `BundleSplit`'s;
+//!   `rb_valid` (the job was split and kept a ray) and the re-bounded bundle `rb_o_lo`, `rb_o_hi`,
+//!   `rb_d_lo`, `rb_d_hi`, `rb_t_lo`, `rb_t_hi`, `rb_j` (all zero when `rb_valid` is low).
 //!
 //! # Sequencing (`L` = the pair's latency, [`bundle_fix_latency`]`(CUTS)`: 3, or 5 for `_p5`)
 //! ```text
@@ -52,17 +60,21 @@
 //!
 //! # Structure
 //! [`crate::bundle::stream_ctl::StreamCtl`] (the control: delay lines, split queue, engine, accumulator, result registers; shared
-//! with the float processor) beside the pair and the ray store ([`RayStore`]); this block only wires
-//! the job port, the store's banks and the control's choice into the pair.
+//! with the float processor) beside the pair and the ray store ([`RayStore`], and [`ScaleStore`] for
+//! each ray's `t_lo` and `j`), and the gatherer [`ReboundAcc`], which takes the rays as they enter the
+//! pair and the control's reading of each answer; this block only wires the job port, the store's banks
+//! and the control's choice into the pair.
 
 use crate::bundle::edge_fix::BUNDLE_TEST_CUTS;
 use crate::bundle::pair_fix::{bundle_fix_latency, BundleFix, BUNDLE_FIX_DEPTHS};
 use crate::bundle::ray_store::{ray_job_word, RayStore};
+use crate::bundle::rebound::{ReboundAcc, ScaleStore, J_BITS};
 pub use crate::bundle::stream_ctl::STREAM_ADDR_BITS;
 use crate::bundle::stream_ctl::{StreamCtl8, SET_BITS};
 use crate::export::verilog_named;
-use crate::slab::fix::code;
+use crate::slab::fix::{code, sext};
 use golden::bundle::fix::{BundleFixFormat, FixBundle};
+use golden::bundle::rebound::ScaledBundle;
 use golden::bundle::stream::{
     PairDatapath, StreamIn, StreamInOf, StreamJob, StreamOut, STREAM_RAYS, STREAM_SETS,
     STREAM_TAG_BITS,
@@ -73,7 +85,7 @@ use rust_hdl::prelude::*;
 /// A fixed job on the job port.
 pub type FixStreamJob = StreamJob<FixBundle, FixBox>;
 /// A clock's inputs of the fixed processor.
-pub type FixStreamIn = StreamIn<FixBundle, FixBox>;
+pub type FixStreamIn = StreamIn<FixBundle, FixBox, ScaledBundle>;
 
 /// The streaming results processor; see the module documentation.
 #[derive(LogicBlock)]
@@ -94,6 +106,8 @@ pub struct BundleStream<
     pub ray_d_lo: [Signal<In, Bits<D>>; 3],
     pub ray_d_hi: [Signal<In, Bits<D>>; 3],
     pub ray_t: Signal<In, Bits<T>>,
+    pub ray_t_lo: Signal<In, Bits<T>>,
+    pub ray_j: Signal<In, Bits<J_BITS>>,
     // job port
     pub start: Signal<In, Bit>,
     pub o_lo: [Signal<In, Bits<G>>; 3],
@@ -117,10 +131,21 @@ pub struct BundleStream<
     pub all_miss: Signal<Out, Bit>,
     pub split: Signal<Out, Bit>,
     pub mask: Signal<Out, Bits<STREAM_RAYS>>,
-    // the pair, the ray store (bank A: ray A, bank B: ray B) and the control
+    // the re-bounded bundle
+    pub rb_valid: Signal<Out, Bit>,
+    pub rb_o_lo: [Signal<Out, Bits<G>>; 3],
+    pub rb_o_hi: [Signal<Out, Bits<G>>; 3],
+    pub rb_d_lo: [Signal<Out, Bits<D>>; 3],
+    pub rb_d_hi: [Signal<Out, Bits<D>>; 3],
+    pub rb_t_lo: Signal<Out, Bits<T>>,
+    pub rb_t_hi: Signal<Out, Bits<T>>,
+    pub rb_j: Signal<Out, Bits<J_BITS>>,
+    // the pair, the ray store (bank A: ray A, bank B: ray B), the control and the gatherer
     pair: BundleFix<G, V, D, T, CUTS>,
     store: RayStore<G, D, T, STREAM_ADDR_BITS>,
+    scale: ScaleStore<T, STREAM_ADDR_BITS>,
     ctl: StreamCtl8<G>,
+    rebound: ReboundAcc<G, D, T>,
 }
 
 impl<const G: usize, const V: usize, const D: usize, const T: usize, const CUTS: usize>
@@ -141,6 +166,8 @@ impl<const G: usize, const V: usize, const D: usize, const T: usize, const CUTS:
             ray_d_lo: Default::default(),
             ray_d_hi: Default::default(),
             ray_t: Default::default(),
+            ray_t_lo: Default::default(),
+            ray_j: Default::default(),
             start: Default::default(),
             o_lo: Default::default(),
             o_hi: Default::default(),
@@ -162,9 +189,19 @@ impl<const G: usize, const V: usize, const D: usize, const T: usize, const CUTS:
             all_miss: Default::default(),
             split: Default::default(),
             mask: Default::default(),
+            rb_valid: Default::default(),
+            rb_o_lo: Default::default(),
+            rb_o_hi: Default::default(),
+            rb_d_lo: Default::default(),
+            rb_d_hi: Default::default(),
+            rb_t_lo: Default::default(),
+            rb_t_hi: Default::default(),
+            rb_j: Default::default(),
             pair: BundleFix::new(bf),
             store: Default::default(),
+            scale: Default::default(),
             ctl: StreamCtl8::new(Self::PAIR_LATENCY),
+            rebound: ReboundAcc::new(Self::PAIR_LATENCY),
         }
     }
 }
@@ -192,6 +229,38 @@ impl<const G: usize, const V: usize, const D: usize, const T: usize, const CUTS:
         }
         self.store.addr_a.next = self.ctl.addr_a.val();
         self.store.addr_b.next = self.ctl.addr_b.val();
+        self.scale.clock.next = self.clock.val();
+        self.scale.we.next = self.ray_we.val();
+        self.scale.waddr.next = self.ray_addr.val();
+        self.scale.w_t_lo.next = self.ray_t_lo.val();
+        self.scale.w_j.next = self.ray_j.val();
+        self.scale.addr_a.next = self.ctl.addr_a.val();
+        self.scale.addr_b.next = self.ctl.addr_b.val();
+
+        // The gatherer: the rays as they enter the pair, and the control's reading of its answer.
+        self.rebound.clock.next = self.clock.val();
+        self.rebound.rst.next = self.rst.val();
+        for i in 0..3 {
+            self.rebound.a_o[i].next = self.store.a_o_lo[i].val();
+            self.rebound.a_o[i + 3].next = self.store.a_o_hi[i].val();
+            self.rebound.a_d[i].next = self.store.a_d_lo[i].val();
+            self.rebound.a_d[i + 3].next = self.store.a_d_hi[i].val();
+            self.rebound.b_o[i].next = self.store.b_o_lo[i].val();
+            self.rebound.b_o[i + 3].next = self.store.b_o_hi[i].val();
+            self.rebound.b_d[i].next = self.store.b_d_lo[i].val();
+            self.rebound.b_d[i + 3].next = self.store.b_d_hi[i].val();
+        }
+        self.rebound.a_t[0].next = self.scale.a_t_lo.val();
+        self.rebound.a_t[1].next = self.store.a_t.val();
+        self.rebound.a_j.next = self.scale.a_j.val();
+        self.rebound.b_t[0].next = self.scale.b_t_lo.val();
+        self.rebound.b_t[1].next = self.store.b_t.val();
+        self.rebound.b_j.next = self.scale.b_j.val();
+        self.rebound.rays_back.next = self.ctl.ans_rays.val();
+        self.rebound.keep_a.next = self.ctl.ans_keep_a.val();
+        self.rebound.keep_b.next = self.ctl.ans_keep_b.val();
+        self.rebound.last_back.next = self.ctl.ans_last.val();
+        self.rebound.bundle_done.next = self.ctl.ans_done.val();
 
         // The control: the job port's control fields and the pair's answer.
         self.ctl.start.next = self.start.val();
@@ -250,6 +319,16 @@ impl<const G: usize, const V: usize, const D: usize, const T: usize, const CUTS:
         self.all_miss.next = self.ctl.all_miss.val();
         self.split.next = self.ctl.split.val();
         self.mask.next = self.ctl.mask.val();
+        self.rb_valid.next = self.rebound.rb_valid.val();
+        for i in 0..3 {
+            self.rb_o_lo[i].next = self.rebound.rb_o[i].val();
+            self.rb_o_hi[i].next = self.rebound.rb_o[i + 3].val();
+            self.rb_d_lo[i].next = self.rebound.rb_d[i].val();
+            self.rb_d_hi[i].next = self.rebound.rb_d[i + 3].val();
+        }
+        self.rb_t_lo.next = self.rebound.rb_t[0].val();
+        self.rb_t_hi.next = self.rebound.rb_t[1].val();
+        self.rb_j.next = self.rebound.rb_j.val();
     }
 }
 
@@ -313,22 +392,58 @@ pub trait BundleStreamIo: Block {
     fn drive(&mut self, input: &StreamInOf<Self::Dp>);
     /// Reads the outputs.
     fn outputs(&self) -> StreamOut;
+    /// The outputs from the values of the output ports (`word`: a port's value by its Verilog name, such
+    /// as `rb_d_lo_1`); `None` when a port is missing.
+    fn decode_out(dp: &Self::Dp, word: &dyn Fn(&str) -> Option<u64>) -> Option<StreamOut>;
     /// The value of input port `port` (a Verilog name such as `ray_d_lo_1`) in one clock.
     fn in_word(dp: &Self::Dp, port: &str, input: &StreamInOf<Self::Dp>) -> Option<u64>;
 }
 
-/// The value of output port `port` (its Verilog name) in `o`.
-pub fn stream_out_word(o: &StreamOut, port: &str) -> Option<u64> {
-    Some(match port {
-        "ready" => o.ready as u64,
-        "done" => o.done as u64,
-        "done_tag" => o.tag as u64,
-        "all_hit" => o.all_hit as u64,
-        "all_miss" => o.all_miss as u64,
-        "split" => o.split as u64,
-        "mask" => o.mask as u64,
-        _ => return None,
+/// The result ports every processor has (`ready` .. `mask`) from their values by name; `rebound` is
+/// `None`.
+pub fn decode_common_out(word: &dyn Fn(&str) -> Option<u64>) -> Option<StreamOut> {
+    Some(StreamOut {
+        ready: word("ready")? != 0,
+        done: word("done")? != 0,
+        tag: word("done_tag")? as u8,
+        all_hit: word("all_hit")? != 0,
+        all_miss: word("all_miss")? != 0,
+        split: word("split")? != 0,
+        mask: word("mask")? as u16,
+        rebound: None,
     })
+}
+
+/// The re-bounded bundle on a fixed processor's `rb_*` ports (widths `g`, `d`, `t`; `word(base,
+/// axis)` a port's value): `None` when `rb_valid` is low and every field is zero, which is what the
+/// block drives then (any other pattern decodes as a bundle, so that a comparison with the model catches
+/// it).
+pub fn decode_rebound(
+    g: usize,
+    d: usize,
+    t: usize,
+    word: impl Fn(&str, usize) -> Option<u64>,
+) -> Option<Option<ScaledBundle>> {
+    let arr = |base: &str, w: usize| -> Option<[i64; 3]> {
+        Some([
+            sext(word(base, 0)?, w),
+            sext(word(base, 1)?, w),
+            sext(word(base, 2)?, w),
+        ])
+    };
+    let sb = ScaledBundle {
+        q: FixBundle {
+            o_lo: arr("rb_o_lo", g)?,
+            o_hi: arr("rb_o_hi", g)?,
+            d_lo: arr("rb_d_lo", d)?,
+            d_hi: arr("rb_d_hi", d)?,
+            t_lo: sext(word("rb_t_lo", 0)?, t),
+            t_hi: sext(word("rb_t_hi", 0)?, t),
+        },
+        j: sext(word("rb_j", 0)?, J_BITS) as i32,
+    };
+    let valid = word("rb_valid", 0)? != 0;
+    Some((valid || sb != ScaledBundle::default()).then_some(sb))
 }
 
 /// The store address `{set, ray}` of a write.
@@ -338,10 +453,10 @@ pub(crate) fn store_addr(set: u8, ray: u8) -> u64 {
 
 /// The value of input port `port` (a Verilog name such as `ray_d_lo_1`) in one clock, for either
 /// datapath: the control ports here, the ray and job data by `data(base, axis, ray, job)`.
-pub fn stream_in_word_with<B: Copy + Default, X: Copy + Default>(
+pub fn stream_in_word_with<B: Copy + Default, X: Copy + Default, R: Copy + Default>(
     port: &str,
-    input: &StreamIn<B, X>,
-    data: impl Fn(&str, usize, &B, &StreamJob<B, X>) -> Option<u64>,
+    input: &StreamIn<B, X, R>,
+    data: impl Fn(&str, usize, &R, &StreamJob<B, X>) -> Option<u64>,
 ) -> Option<u64> {
     let (base, idx) = crate::export::split_port(port);
     let (set, ray, r) = input.write.unwrap_or_default();
@@ -360,8 +475,10 @@ pub fn stream_in_word_with<B: Copy + Default, X: Copy + Default>(
 
 /// The value of input port `port` in one clock, for a fixed processor over `bf`.
 pub fn stream_in_word(bf: &BundleFixFormat, port: &str, input: &FixStreamIn) -> Option<u64> {
-    stream_in_word_with(port, input, |base, i, r, j| {
-        ray_job_word(bf, base, i, r, &j.bundle, &j.boxes)
+    stream_in_word_with(port, input, |base, i, r, j| match base {
+        "ray_t_lo" => Some(code(r.q.t_lo, bf.base.t as usize)),
+        "ray_j" => Some(code(r.j as i64, J_BITS)),
+        _ => ray_job_word(bf, base, i, &r.q, &j.bundle, &j.boxes),
     })
 }
 
@@ -384,7 +501,8 @@ impl<const G: usize, const V: usize, const D: usize, const T: usize, const CUTS:
     }
 
     fn drive(&mut self, input: &FixStreamIn) {
-        let (set, ray, r) = input.write.unwrap_or_default();
+        let (set, ray, sr) = input.write.unwrap_or_default();
+        let (r, rj) = (sr.q, sr.j);
         self.rst.next = input.reset;
         self.ray_we.next = input.write.is_some();
         self.ray_addr.next = bits::<STREAM_ADDR_BITS>(store_addr(set, ray));
@@ -409,6 +527,8 @@ impl<const G: usize, const V: usize, const D: usize, const T: usize, const CUTS:
             self.out_hi[a].next = bits::<G>(code(p.outer.hi[a], G));
         }
         self.ray_t.next = bits::<T>(code(r.t_hi, T));
+        self.ray_t_lo.next = bits::<T>(code(r.t_lo, T));
+        self.ray_j.next = bits::<J_BITS>(code(rj as i64, J_BITS));
         self.t_lo.next = bits::<T>(code(b.t_lo, T));
         self.t_hi.next = bits::<T>(code(b.t_hi, T));
     }
@@ -422,7 +542,33 @@ impl<const G: usize, const V: usize, const D: usize, const T: usize, const CUTS:
             all_miss: self.all_miss.val(),
             split: self.split.val(),
             mask: self.mask.val().to_u64() as u16,
+            rebound: decode_rebound(G, D, T, |base, i| {
+                Some(match base {
+                    "rb_valid" => self.rb_valid.val() as u64,
+                    "rb_o_lo" => self.rb_o_lo[i].val().to_u64(),
+                    "rb_o_hi" => self.rb_o_hi[i].val().to_u64(),
+                    "rb_d_lo" => self.rb_d_lo[i].val().to_u64(),
+                    "rb_d_hi" => self.rb_d_hi[i].val().to_u64(),
+                    "rb_t_lo" => self.rb_t_lo.val().to_u64(),
+                    "rb_t_hi" => self.rb_t_hi.val().to_u64(),
+                    "rb_j" => self.rb_j.val().to_u64(),
+                    _ => return None,
+                })
+            })
+            .expect("every re-bounding port"),
         }
+    }
+
+    fn decode_out(bf: &BundleFixFormat, word: &dyn Fn(&str) -> Option<u64>) -> Option<StreamOut> {
+        let (g, d, t) = (bf.base.g as usize, bf.fd as usize + 3, bf.base.t as usize);
+        let rebound = decode_rebound(g, d, t, |base, i| match base {
+            "rb_valid" | "rb_t_lo" | "rb_t_hi" | "rb_j" => word(base),
+            _ => word(&format!("{base}_{i}")),
+        })?;
+        Some(StreamOut {
+            rebound,
+            ..decode_common_out(word)?
+        })
     }
 
     fn in_word(bf: &BundleFixFormat, port: &str, input: &FixStreamIn) -> Option<u64> {

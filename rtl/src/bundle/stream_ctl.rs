@@ -25,7 +25,10 @@
 //!   either: 0 for a bundle), `issue_lo`, `issue_hi` (the outer box of the ray pair);
 //! - to the ray store: `addr_a`, `addr_b` (`{set, ray}` of the next ray pair, read at the clock edge);
 //! - `ready`, `done`, `done_tag`, `all_hit`, `all_miss`, `split`, `mask`: the processor's result ports
-//!   (see [`crate::bundle::stream::BundleStream`]).
+//!   (see [`crate::bundle::stream::BundleStream`]);
+//! - the pair's answer in this clock, decoded: `ans_rays` (a ray pair's), `ans_keep_a`, `ans_keep_b`
+//!   (ray A, ray B present and may hit), `ans_last` (a job's last pair's), `ans_done` (a bundle's that
+//!   reports without a split), for [`crate::bundle::rebound::ReboundAcc`].
 //!
 //! # Structure
 //! Delay lines ([`Line`], `L` clocks) carry each entry's tag, active mask, set and outer box beside the
@@ -106,6 +109,12 @@ pub struct StreamCtl<
     pub all_miss: Signal<Out, Bit>,
     pub split: Signal<Out, Bit>,
     pub mask: Signal<Out, Bits<STREAM_RAYS>>,
+    // the pair's answer in this clock, decoded (for re-bounding)
+    pub ans_rays: Signal<Out, Bit>,
+    pub ans_keep_a: Signal<Out, Bit>,
+    pub ans_keep_b: Signal<Out, Bit>,
+    pub ans_last: Signal<Out, Bit>,
+    pub ans_done: Signal<Out, Bit>,
     // the delay lines beside the pair
     l_tag: Line<Bits<STREAM_TAG_BITS>>,
     l_active: Line<Bits<STREAM_RAYS>>,
@@ -255,6 +264,11 @@ impl<const C: usize, const Q: usize, const Q3: usize, const PB: usize, const CB:
             all_miss: Default::default(),
             split: Default::default(),
             mask: Default::default(),
+            ans_rays: Default::default(),
+            ans_keep_a: Default::default(),
+            ans_keep_b: Default::default(),
+            ans_last: Default::default(),
+            ans_done: Default::default(),
             l_tag: Line::new(latency),
             l_active: Line::new(latency),
             l_set: Line::new(latency),
@@ -662,5 +676,11 @@ impl<const C: usize, const Q: usize, const Q3: usize, const PB: usize, const CB:
         self.all_miss.next = self.all_miss_q.q.val();
         self.split.next = self.split_q.q.val();
         self.mask.next = self.mask_q.q.val();
+        self.ans_rays.next = self.rays_back.val();
+        self.ans_keep_a.next = self.rays_back.val() & self.p_all_hit.val();
+        self.ans_keep_b.next =
+            self.rays_back.val() & !self.p_all_miss.val() & self.p_tag.val().get_bit(8);
+        self.ans_last.next = self.last_back.val();
+        self.ans_done.next = self.finish_bundle.val();
     }
 }

@@ -34,7 +34,9 @@
 
 use crate::bundle::pair_float::{bundle_float_latency, BundleFloat, BUNDLE_FLOAT_DEPTHS};
 use crate::bundle::ray_store::{ray_job_word_of, RayStore};
-use crate::bundle::stream::{store_addr, stream_in_word_with, BundleStreamIo, STREAM_ADDR_BITS};
+use crate::bundle::stream::{
+    decode_common_out, store_addr, stream_in_word_with, BundleStreamIo, STREAM_ADDR_BITS,
+};
 use crate::bundle::stream_ctl::{StreamCtl16, SET_BITS};
 use golden::bundle::float::FloatBundle;
 use golden::bundle::stream::{
@@ -340,7 +342,12 @@ impl<const E: usize, const M: usize, const N: usize, const CUTS: usize> BundleSt
             all_miss: self.all_miss.val(),
             split: self.split.val(),
             mask: self.mask.val().to_u64() as u16,
+            rebound: None,
         }
+    }
+
+    fn decode_out(_: &FloatFormat, word: &dyn Fn(&str) -> Option<u64>) -> Option<StreamOut> {
+        decode_common_out(word)
     }
 
     fn in_word(_: &FloatFormat, port: &str, input: &FloatStreamIn) -> Option<u64> {

@@ -17,8 +17,10 @@ use crate::campaign::{campaign_bounds, campaign_map};
 use crate::rtl_sim::Clocked;
 use crate::verilator::Harness;
 use golden::bundle::edge::BoxPair;
+use golden::bundle::edge::Bundle;
 use golden::bundle::fix::BundleFixFormat;
 use golden::bundle::gen::BundleGen;
+use golden::bundle::rebound::{quantize_scaled, ScaledBundle, J_BITS};
 use golden::bundle::stream::{
     PairDatapath, StreamInOf, StreamJob, StreamModel, StreamOut, STREAM_RAYS, STREAM_SETS,
 };
@@ -31,25 +33,29 @@ use std::collections::VecDeque;
 use std::path::Path;
 use std::sync::mpsc::sync_channel;
 
-/// A case for the processor: the bundle, its box pair and its rays, each quantised as a tiny bundle.
+/// A case for the processor: the bundle, its box pair and its rays, each quantised as a tiny bundle (as
+/// the ray store holds it, [`PairDatapath::Ray`]).
 pub type StreamCase<P> = (
     <P as PairDatapath>::Bundle,
     BoxPair<<P as PairDatapath>::Box>,
-    Vec<<P as PairDatapath>::Bundle>,
+    Vec<<P as PairDatapath>::Ray>,
 );
 
 /// What the stimulus needs of a pair datapath: cases and raw rays in its format.
 pub trait StreamCases: PairDatapath + Copy + std::fmt::Debug + Send + Sync + 'static {
     /// The format's name, for messages.
     fn label(&self) -> String;
+    /// Whether the processor re-bounds (reports [`StreamOut::rebound`]).
+    const REBOUNDS: bool;
     /// A case from `gen` (its next case, or with `one_ray` a single ray on a grid) in the format, or
     /// `None` when the bundle, the box or a ray does not fit it.
     fn case(&self, gen: &mut BundleGen, one_ray: bool) -> Option<StreamCase<Self>>;
     /// A ray of raw codes of the format (a pattern no quantisation yields).
-    fn raw_ray(&self, rng: &mut Pcg64) -> Self::Bundle;
+    fn raw_ray(&self, rng: &mut Pcg64) -> Self::Ray;
 }
 
 impl StreamCases for BundleFixFormat {
+    const REBOUNDS: bool = true;
     fn label(&self) -> String {
         self.name()
     }
@@ -60,14 +66,31 @@ impl StreamCases for BundleFixFormat {
         } else {
             gen.next_case()
         };
-        quantised_case(self, &map, &c)
+        let (b, p, _) = quantised_case(self, &map, &c)?;
+        let rays = c
+            .rays
+            .iter()
+            .map(|r| quantize_scaled(self, &map, &Bundle::of_ray(r).ok()?).ok())
+            .collect::<Option<Vec<_>>>()?;
+        Some((b, p, rays))
     }
-    fn raw_ray(&self, rng: &mut Pcg64) -> Self::Bundle {
-        *raw_bundle(self, rng).0.sides().0
+    /// Raw codes, with a direction exponent near 0 (rays of one scale and neighbouring ones) half the
+    /// time, else anywhere in its range (shifts up to and past every code width).
+    fn raw_ray(&self, rng: &mut Pcg64) -> Self::Ray {
+        let half = 1i32 << (J_BITS - 1);
+        ScaledBundle {
+            q: *raw_bundle(self, rng).0.sides().0,
+            j: if rng.gen() {
+                rng.gen_range(-3..=3)
+            } else {
+                rng.gen_range(-half..half)
+            },
+        }
     }
 }
 
 impl StreamCases for FloatFormat {
+    const REBOUNDS: bool = false;
     fn label(&self) -> String {
         self.name()
     }
@@ -139,7 +162,7 @@ pub struct StreamStim<P: StreamCases> {
     rng: Pcg64,
     /// Per set: the bundle and box pair of the case loaded into it, and its ray count.
     sets: [(P::Bundle, BoxPair<P::Box>, usize); STREAM_SETS],
-    pending: VecDeque<(u8, u8, P::Bundle)>,
+    pending: VecDeque<(u8, u8, P::Ray)>,
     clocks_left: u64,
     /// Start probability in this phase, in 1/16, and the clocks left in the phase.
     phase: (u32, u32),
@@ -278,6 +301,8 @@ pub struct StreamStats {
     /// The split queue's largest occupancy.
     pub max_queued: u64,
     pub resets: u64,
+    /// Reports with a re-bounded bundle.
+    pub rebounds: u64,
 }
 
 /// The model beside a block: steps both with each input and compares outputs, counting coverage.
@@ -344,6 +369,7 @@ impl<P: PairDatapath> StreamChecker<P> {
                 .ok_or_else(|| format!("clock {}: done with an unknown tag", s.clocks))?;
             s.overtakes += (k > 0) as u64;
             let (_, n) = self.in_flight.remove(k).expect("found");
+            s.rebounds += want.rebound.is_some() as u64;
             if want.all_hit {
                 s.all_hit += 1;
             } else if want.all_miss {
@@ -393,29 +419,16 @@ where
     });
     let mut rtl = (lockstep > 0).then(|| StreamRtl::<S>::new(&dp));
     let mut ck = StreamChecker::of::<S>(&dp);
-    let names = [
-        "ready", "done", "done_tag", "all_hit", "all_miss", "split", "mask",
-    ];
-    let idx: Vec<usize> = names
+    let idx: std::collections::HashMap<String, usize> = harness
+        .outputs
         .iter()
-        .map(|n| {
-            harness
-                .output_index(n)
-                .ok_or_else(|| format!("no output port {n}"))
-        })
-        .collect::<Result<_, _>>()?;
+        .enumerate()
+        .map(|(k, p)| (p.name.clone(), k))
+        .collect();
     harness.stream(records, |cycle, out| {
         let input = rx.recv().map_err(|_| "producer ended early".to_string())?;
-        let w = |k: usize| out[idx[k]];
-        let got = StreamOut {
-            ready: w(0) != 0,
-            done: w(1) != 0,
-            tag: w(2) as u8,
-            all_hit: w(3) != 0,
-            all_miss: w(4) != 0,
-            split: w(5) != 0,
-            mask: w(6) as u16,
-        };
+        let got = S::decode_out(&dp, &|name| idx.get(name).map(|&k| out[k]))
+            .ok_or("an output port of the processor is missing from the harness")?;
         ck.check(&input, &got)
             .map_err(|e| format!("Verilator: {e}"))?;
         if cycle >= lockstep {
@@ -547,6 +560,7 @@ where
             total.overtakes += s.overtakes;
             total.refused += s.refused;
             total.clocks += s.clocks;
+            total.rebounds += s.rebounds;
             Ok(())
         },
         |program, path| {

@@ -1,11 +1,12 @@
 //! Scene job streams through the streaming results processor: every bundle's traversal recorded as a
 //! tree of jobs (bundle, node box pair, active rays, the model's mask) by the fixed model
 //! (`golden::bundle::split::split_fix` on the quantised bundle, box pair and rays, as
-//! `golden::bundle::traverse` runs it, without re-bounding and without early splits: the RTL does
-//! neither yet), then replayed closed-loop through the block: a job is started once its parent's
+//! `golden::bundle::traverse` runs it, without early splits (the RTL does not make them), and with or
+//! without re-bounding: a job that drops rays hands its children the bundle the block re-bounds around
+//! the rays it keeps, `Rebound::Stored`), then replayed closed-loop through the block: a job is started once its parent's
 //! result has come back, up to four bundles at once (one per ray set, the next bundle's rays written
-//! while the others run), and every result is checked against the recorded mask and every clock
-//! against the clock-by-clock model ([`StreamChecker`]).
+//! while the others run), and every result is checked against the recorded mask and re-bounded bundle
+//! and every clock against the clock-by-clock model ([`StreamChecker`]).
 //!
 //! What it measures: clocks, and the clocks the pair's input was used (which equal the model's busy-pair
 //! count, `BundleStats::pair_cycles`), so the pair-input utilisation is the model's busy-pair figure
@@ -15,6 +16,7 @@ use super::stream::{StreamChecker, StreamRtl};
 use golden::bundle::build::Built;
 use golden::bundle::edge::Bundle;
 use golden::bundle::fix::{quantize_box_pair, quantize_bundle, BundleFixFormat, FixBundle};
+use golden::bundle::rebound::{j_fits, quantize_scaled, rebound_fix, ScaledBundle, J_BITS};
 use golden::bundle::split::split_fix;
 use golden::bundle::stream::{StreamJob, STREAM_RAYS, STREAM_SETS};
 use golden::format::fixed::GridMap;
@@ -33,6 +35,9 @@ pub struct TreeJob {
     pub mask: u16,
     /// Whether the pair decided the bundle.
     pub decided: bool,
+    /// The re-bounded bundle the block reports with it: `golden::bundle::rebound::rebound_fix` of the
+    /// rays kept by a split job (`None` for a decided job or one that kept none).
+    pub rebound: Option<ScaledBundle>,
     /// The jobs released by its result (the children's, when `mask` is not empty).
     pub children: Vec<usize>,
 }
@@ -40,8 +45,8 @@ pub struct TreeJob {
 /// Recorded traversals of a set of bundles.
 #[derive(Clone, Debug, Default)]
 pub struct JobTrees {
-    /// Per bundle: its quantised rays and its root job.
-    pub bundles: Vec<(Vec<FixBundle>, usize)>,
+    /// Per bundle: its quantised rays (with their direction exponents) and its root job.
+    pub bundles: Vec<(Vec<ScaledBundle>, usize)>,
     pub jobs: Vec<TreeJob>,
     /// The model's busy-pair count: `1 + ceil(|active| / 2)` per split job, 1 per decided one.
     pub pair_cycles: u64,
@@ -51,13 +56,16 @@ pub struct JobTrees {
 }
 
 /// Records the traversal of every bundle of `built` (at most [`STREAM_RAYS`] rays each) on `bvh` with
-/// the fixed datapath `bf` on grid `map`. Errors name the bundle and what does not fit.
+/// the fixed datapath `bf` on grid `map`; with `rebound`, a job that drops rays passes the bundle the
+/// block re-bounds around the rays it keeps to its children (`golden::bundle::traverse`'s
+/// `Rebound::Stored`), else its own bundle. Errors name the bundle and what does not fit.
 pub fn job_trees(
     bf: &BundleFixFormat,
     map: &GridMap,
     bvh: &Bvh,
     rays: &[Ray],
     built: &[Built],
+    rebound: bool,
 ) -> Result<JobTrees, String> {
     let mut t = JobTrees::default();
     let boxes: Vec<_> = bvh
@@ -74,20 +82,30 @@ pub fn job_trees(
             ));
         }
         let fb = quantize_bundle(bf, map, &b.bundle).map_err(|e| format!("bundle {k}: {e}"))?;
-        let qr: Vec<FixBundle> = b
+        let sr: Vec<ScaledBundle> = b
             .rays
             .iter()
             .map(|&i| {
-                Bundle::of_ray(&rays[i])
-                    .and_then(|r| quantize_bundle(bf, map, &r))
-                    .map_err(|e| format!("bundle {k}, ray {i}: {e}"))
+                let r = Bundle::of_ray(&rays[i])
+                    .and_then(|r| quantize_scaled(bf, map, &r))
+                    .map_err(|e| format!("bundle {k}, ray {i}: {e}"))?;
+                if j_fits(r.j) {
+                    Ok(r)
+                } else {
+                    Err(format!(
+                        "bundle {k}, ray {i}: direction exponent {} does not fit the {J_BITS}-bit \
+                         ray_j port (a direction too short or too long)",
+                        r.j
+                    ))
+                }
             })
-            .collect::<Result<_, _>>()?;
+            .collect::<Result<_, String>>()?;
+        let qr: Vec<FixBundle> = sr.iter().map(|r| r.q).collect();
         let root = t.jobs.len();
-        t.bundles.push((qr.clone(), root));
-        // (node, active, the job that releases it)
-        let mut todo = vec![(0usize, ((1u32 << n) - 1) as u16, None::<usize>)];
-        while let Some((node, active, parent)) = todo.pop() {
+        t.bundles.push((sr.clone(), root));
+        // (node, active, the job that releases it, the bundle)
+        let mut todo = vec![(0usize, ((1u32 << n) - 1) as u16, None::<usize>, fb)];
+        while let Some((node, active, parent, fb)) = todo.pop() {
             let job = StreamJob {
                 bundle: fb,
                 boxes: boxes[node],
@@ -99,11 +117,18 @@ pub fn job_trees(
             t.pair_cycles += r.pair_cycles as u64;
             t.one_job_clocks += rtl::bundle::split::split_clocks(&r) as u64;
             let id = t.jobs.len();
+            let kept = (0..n).filter(|i| r.mask >> i & 1 == 1);
+            let hull = if r.split {
+                rebound_fix(bf, kept.map(|i| sr[i]))
+            } else {
+                None
+            };
             t.jobs.push(TreeJob {
                 bundle: k,
                 job,
                 mask: r.mask as u16,
                 decided: !r.split,
+                rebound: hull,
                 children: vec![],
             });
             if let Some(p) = parent {
@@ -111,8 +136,12 @@ pub fn job_trees(
             }
             if r.mask != 0 {
                 if let NodeKind::Inner { left, right } = bvh.nodes[node].kind {
-                    todo.push((right, r.mask as u16, Some(id)));
-                    todo.push((left, r.mask as u16, Some(id)));
+                    let next = match hull {
+                        Some(h) if rebound && r.mask as u16 != active => h.q,
+                        _ => fb,
+                    };
+                    todo.push((right, r.mask as u16, Some(id), next));
+                    todo.push((left, r.mask as u16, Some(id), next));
                 }
             }
         }
@@ -155,7 +184,7 @@ impl StreamRun {
 #[derive(Default)]
 struct SetState {
     bundle: Option<usize>,
-    writes: Vec<(u8, FixBundle)>,
+    writes: Vec<(u8, ScaledBundle)>,
     ready: Vec<usize>,
     in_flight: usize,
 }
@@ -250,6 +279,13 @@ pub fn run_trees<S: BundleStreamIo<Dp = BundleFixFormat>>(
                     run.clocks, tj.bundle, out.mask, tj.mask
                 ));
             }
+            if out.rebound != tj.rebound {
+                return Err(format!(
+                    "clock {}: job {id} (bundle {}) reported the re-bounded bundle {:?}, the \
+                     traversal's rule {:?}",
+                    run.clocks, tj.bundle, out.rebound, tj.rebound
+                ));
+            }
             run.decided += tj.decided as u64;
             let s = sets
                 .iter_mut()
@@ -313,7 +349,7 @@ pub fn run_decided<S: BundleStreamIo<Dp = BundleFixFormat>>(
 /// tiles of a `w x h` image and the bounce and shadow rays bundled by the builder (`rays` per bundle at
 /// most, direction spread `dir_spread`, origin spread a tenth of the scene's diagonal, 16 open
 /// bundles), as `rtu bundle-scenes` makes them (same BVH, rays and seed), on the fixed datapath `bf`
-/// over the scene's grid.
+/// over the scene's grid; children get re-bounded bundles with `rebound` ([`job_trees`]).
 pub fn scene_streams(
     scene: &golden::scene::tri_scene::TriScene,
     seed: u64,
@@ -321,6 +357,7 @@ pub fn scene_streams(
     tile: usize,
     (rays, dir_spread): (usize, f64),
     bf: &BundleFixFormat,
+    rebound: bool,
 ) -> Result<Vec<(&'static str, String, JobTrees)>, String> {
     use golden::bundle::build::{build, tiles, BuildParams};
     use golden::scene::traverse::{trace, AabbOnly};
@@ -337,7 +374,8 @@ pub fn scene_streams(
     out.push((
         "primary",
         format!("tile{tile}x{tile}"),
-        job_trees(bf, &map, &bvh, &prim, &built).map_err(|e| format!("primary rays: {e}"))?,
+        job_trees(bf, &map, &bvh, &prim, &built, rebound)
+            .map_err(|e| format!("primary rays: {e}"))?,
     ));
     let p = BuildParams {
         max_rays: rays,
@@ -351,7 +389,8 @@ pub fn scene_streams(
         out.push((
             set,
             format!("build{rays}@{dir_spread}"),
-            job_trees(bf, &map, &bvh, r, &built).map_err(|e| format!("{set} rays: {e}"))?,
+            job_trees(bf, &map, &bvh, r, &built, rebound)
+                .map_err(|e| format!("{set} rays: {e}"))?,
         ));
     }
     Ok(out)

@@ -799,7 +799,7 @@ fn job_ports(bf: &BundleFixFormat) -> Vec<(String, String)> {
 
 /// How the job's bundle and boxes and the stored rays of a results processor over `bf` are encoded
 /// (the same for the one-job and the streaming processor).
-fn job_encoding(bf: &BundleFixFormat) -> String {
+fn job_encoding(bf: &BundleFixFormat, stores_t_lo: bool) -> String {
     let fmt = &bf.base;
     format!(
         "**Encoding**: the job's bundle and box are encoded exactly as for the pair `bundle_fix_{name}` (its \
@@ -813,9 +813,22 @@ datasheet has the conditions): origin box `o_lo_a = floor(o_min_a / 2^k) - c_a`,
 `out_hi_a = ceil(max_a / 2^k) - c_a` (equal for a box on the grid; an empty world box is \
 `lo_a = {gmax}`, `hi_a = {gmin}` in both). Each stored ray (`t_min = 0`) is the bundle of that one ray, \
 with its own `j`: `ray_o_lo/hi` floored and ceiled, `ray_d_lo/hi = floor/ceil(d_a * 2^(j + {fd}))`, \
-`ray_t = ceil(t_max * 2^({ft} - k - j))` (saturating to the +inf code); its floored `t_max` (`t_lo`) is \
-not stored. The rays of a job need not be the bundle's own rays, but only then does the report describe \
-them.\n\n",
+`ray_t = ceil(t_max * 2^({ft} - k - j))` (saturating to the +inf code); {t_lo} The rays of a job need \
+not be the bundle's own rays, but only then does the report describe them.\n\n",
+        t_lo = if stores_t_lo {
+            format!(
+                "for re-bounding, its floored `t_max` and its `j` are stored too: \
+                 `ray_t_lo = floor(t_max * 2^({ft} - k - j))` (the largest finite code when it reaches \
+                 +inf), `ray_j = j` ({jb}-bit two's complement, so a ray's largest direction component \
+                 must lie in `[2^-{jmax}, 2^{jmin})`).",
+                ft = fmt.ft,
+                jb = rtl::bundle::rebound::J_BITS,
+                jmax = (1 << (rtl::bundle::rebound::J_BITS - 1)) - 1,
+                jmin = 1 << (rtl::bundle::rebound::J_BITS - 1),
+            )
+        } else {
+            "its floored `t_max` (`t_lo`) is not stored.".to_string()
+        },
         name = bf.name(),
         fd = bf.fd,
         ft = fmt.ft,
@@ -909,7 +922,7 @@ when `all_miss`, the OR of the rays' \"may hit\" answers when `split`. `ready` i
 of that clock: no `done` follows for it, and `ready` is 1 from the next clock. A `start` in a clock with \
 `rst` high is not taken; a ray store write is. The ray store and the report registers keep their \
 contents.",
-        enc = job_encoding(bf),
+        enc = job_encoding(bf, false),
         grid = fix_grid_text(fmt),
         l = L,
     );
@@ -931,6 +944,8 @@ struct StreamPairText {
     params: Vec<(String, String, String)>,
     store: Vec<(String, String)>,
     job: Vec<(String, String)>,
+    /// The re-bounding result ports and rule (the fixed processor's).
+    rebound: Option<(Vec<(String, String)>, String)>,
     /// The format's words (grid or float layout) and the encoding of jobs and rays.
     format: String,
     enc: String,
@@ -956,10 +971,17 @@ pub fn bundle_stream_doc(bf: &BundleFixFormat, cuts: usize) -> FamilyDoc {
                 "bits of a direction code (signed), `FD + 3`",
             ),
         ],
-        store: store_ports(bf),
+        store: store_ports(bf)
+            .into_iter()
+            .chain([
+                port("ray_t_lo", format!("stored ray's `t_max`, `floor` in the ray's t codes, signed {} bits (for re-bounding only)", fmt.t)),
+                port("ray_j", format!("stored ray's direction exponent `j`, {}-bit two's complement (for re-bounding only)", rtl::bundle::rebound::J_BITS)),
+            ])
+            .collect(),
         job: job_ports(bf),
+        rebound: Some(rebound_doc(bf)),
         format: fix_grid_text(fmt),
-        enc: job_encoding(bf),
+        enc: job_encoding(bf, true),
         l: rtl::bundle::pair_fix::bundle_fix_latency(cuts),
     })
 }
@@ -993,6 +1015,7 @@ pub fn bundle_stream_float_doc(f: &FloatFormat, cuts: usize) -> FamilyDoc {
             port("out_lo", word("node box, outer (AnyHit and the rays) lower corner `RD(min)`")),
             port("out_hi", word("node box, outer (AnyHit and the rays) upper corner `RU(max)`")),
         ],
+        rebound: None,
         format: float_layout_text(f),
         enc: format!(
             "**Encoding**: the job's bundle and box are encoded exactly as for the pair \
@@ -1004,6 +1027,37 @@ bundle's own rays, but only then does the report describe them.\n\n"
         ),
         l: rtl::bundle::pair_float::bundle_float_latency(cuts),
     })
+}
+
+/// The re-bounding ports and rule of the fixed streaming processor over `bf`.
+fn rebound_doc(bf: &BundleFixFormat) -> (Vec<(String, String)>, String) {
+    let (g, t, db) = (bf.base.g, bf.base.t, bf.dir_bits());
+    let jb = rtl::bundle::rebound::J_BITS;
+    let ports = vec![
+        port("rb_valid", "report: 1 when the job was split and kept a ray; the `rb_*` ports then hold the re-bounded bundle of its kept rays, else every `rb_*` port is 0"),
+        port("rb_o_lo", format!("re-bounded bundle's origin box, lower corner, signed {g} bits")),
+        port("rb_o_hi", format!("re-bounded bundle's origin box, upper corner, signed {g} bits")),
+        port("rb_d_lo", format!("re-bounded bundle's direction box, lower corner, on the scale `2^(rb_j + FD)`, signed {db} bits")),
+        port("rb_d_hi", format!("re-bounded bundle's direction box, upper corner, signed {db} bits")),
+        port("rb_t_lo", format!("re-bounded bundle's smallest `t_max` (`floor`), signed {t} bits")),
+        port("rb_t_hi", format!("re-bounded bundle's largest `t_max` (`ceil`), signed {t} bits; most positive code = +inf")),
+        port("rb_j", format!("re-bounded bundle's direction exponent, {jb}-bit two's complement: the smallest `ray_j` of the kept rays")),
+    ];
+    let rule = "6. **Re-bounding**: while a split job's rays go through the pair, the block gathers the \
+bundle around the rays it keeps (mask bit set), from the rays as stored (`ray_*`, `ray_t_lo`, `ray_j`), \
+and reports it with the job on `rb_*`, valid with `done` and held as the other report ports. The rule \
+(`golden::bundle::rebound` in the repository): every kept ray is brought onto the smallest `j` among \
+them, `j' = min j`, shifting by `s = j - j'`: direction codes shift right by `s`, `lo` rounding down \
+and `hi` up; t codes shift left by `s`, exact, saturating at the largest finite code (`t_lo`) or at \
++inf (`t_hi`), the +inf code and negative codes unchanged; origin codes as they are. Then `rb_*_lo` is \
+the minimum and `rb_*_hi` the maximum of every field (signed). The result contains every kept ray's \
+tiny bundle, so the pair's answers on it hold for those rays: feed it back as the job bundle of the \
+next node (with `active = mask`). It is on the same grid and t scale as the job's bundle when every \
+kept ray had the job's `j`. A decided job, or a split one that kept no ray, reports `rb_valid = 0` \
+and zeros. When every ray stays (`mask = active`) the caller may keep the job's own bundle instead \
+(the traversal model in the repository does).\n"
+        .to_string();
+    (ports, rule)
 }
 
 /// The streaming processor's datasheet around the pair `p`.
@@ -1062,10 +1116,15 @@ fn stream_doc(p: StreamPairText) -> FamilyDoc {
         port("split", "report: the bundle was undecided and its active rays were tested one by one"),
         port("mask", format!("report, {n} bits: bit `i` = ray `i` may hit (only bits of `active` are ever set; never 0 for a ray that hits)")),
     ]);
-    let idx = axis_index(&[
+    let (rb_ports, rb_rule) = p.rebound.unwrap_or_default();
+    ports.extend(rb_ports);
+    let mut idx = axis_index(&[
         "ray_o_lo", "ray_o_hi", "ray_d_lo", "ray_d_hi", "o_lo", "o_hi", "d_lo", "d_hi", "in_lo",
         "in_hi", "out_lo", "out_hi",
     ]);
+    if !rb_rule.is_empty() {
+        idx.extend(axis_index(&["rb_o_lo", "rb_o_hi", "rb_d_lo", "rb_d_hi"]));
+    }
     let rules = format!(
         "{grid}
 
@@ -1091,13 +1150,20 @@ answer is AnyHit's bounds on its tiny bundle (\"may hit\"). The next queued job 
 `all_miss`, `split` and `mask` are valid from that clock and held until the next `done`. `mask = active` \
 when `all_hit`, `0` when `all_miss`, the OR of the rays' \"may hit\" answers when `split`. Tags are \
 returned as given; keep the tags of jobs in flight distinct to tell their reports apart.
-
+{rb_rule}
 **Reset**: `rst` high in a clock drops, at the end of that clock, every job in flight (in the pair, \
 queued, or being split): no `done` follows for any of them, and `ready` is 1 from the next clock. A \
 `start` in a clock with `rst` high is not taken; a ray store write is. The ray store and the report \
 registers keep their contents.",
         enc = p.enc,
         grid = p.format,
+    );
+    // The reset paragraph also covers the re-bounding registers.
+    let rules = rules.replace(
+        "The ray store and the report \
+registers keep their contents.",
+        "The ray store and the report registers (re-bounding's included) keep their contents; the \
+bundle being re-bounded is dropped.",
     );
     FamilyDoc {
         what,

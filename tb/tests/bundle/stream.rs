@@ -38,6 +38,11 @@ fn well_covered<P: StreamCases>(dp: &P, s: &StreamStats) {
         "{}: the queue, out-of-order reports and refused starts must occur: {s:?}",
         dp.label()
     );
+    assert!(
+        !P::REBOUNDS || s.rebounds > s.split / 2,
+        "{}: most split jobs must report a re-bounded bundle: {s:?}",
+        dp.label()
+    );
 }
 
 fn rtl_matches_model<S: BundleStreamIo>(dp: S::Dp, clocks: u64, seed: u64)
@@ -266,17 +271,37 @@ fn stream_float_verilator_matches_model_and_rtl_fp16_p13() {
 }
 
 /// Scene job streams, closed loop (`tb::bundle::stream_scene`): on a small room, primary rays in 4x4
-/// tiles and bounce and shadow rays bundled 16 at most, every job's mask equals the recorded model
-/// mask and every clock equals the clock-by-clock model; the pair's input is used in exactly the
+/// tiles and bounce and shadow rays bundled 16 at most, without and with re-bounding, every job's mask
+/// and re-bounded bundle equal the recorded traversal's and every clock equals the clock-by-clock model; the pair's input is used in exactly the
 /// model's busy-pair count of clocks. Prints utilisation and clocks per job (figures, not thresholds).
 #[test]
 fn stream_scene_jobs_replay_closed_loop_b12() {
+    big_stack(scene_jobs_replay);
+}
+
+fn scene_jobs_replay() {
     use tb::bundle::stream_scene::{run_decided, run_trees, scene_streams};
     let bf = preset(1);
     let sc = golden::scene::tri_scene::by_name("room", 1, None).unwrap();
-    let streams = scene_streams(&sc, 1, (24, 16), 4, (16, 0.2), &bf).unwrap();
-    assert_eq!(streams.len(), 3);
-    for (set, bundling, trees) in &streams {
+    let keep = scene_streams(&sc, 1, (24, 16), 4, (16, 0.2), &bf, false).unwrap();
+    let stored = scene_streams(&sc, 1, (24, 16), 4, (16, 0.2), &bf, true).unwrap();
+    assert_eq!(keep.len(), 3);
+    // Re-bounding hands some children a bundle of their own.
+    let rebounds = |t: &tb::bundle::stream_scene::JobTrees| {
+        t.jobs.iter().filter(|j| j.rebound.is_some()).count()
+    };
+    assert!(stored.iter().map(|s| rebounds(&s.2)).sum::<usize>() > 0);
+    let differ = keep
+        .iter()
+        .zip(&stored)
+        .filter(|(k, s)| k.2.pair_cycles != s.2.pair_cycles)
+        .count();
+    assert!(differ > 0, "re-bounding changes no job stream");
+    for (rule, (set, bundling, trees)) in keep
+        .iter()
+        .map(|s| ("keep", s))
+        .chain(stored.iter().map(|s| ("stored", s)))
+    {
         assert!(trees.jobs.len() > trees.bundles.len(), "{set}: {trees:?}");
         let mut dut = StreamRtl::<rtl::BundleStreamB12>::new(&bf);
         let r = run_trees(&bf, trees, &mut dut, || {}).unwrap_or_else(|e| panic!("{set}: {e}"));
@@ -288,8 +313,8 @@ fn stream_scene_jobs_replay_closed_loop_b12() {
         let mut dut = StreamRtl::<rtl::BundleStreamB12>::new(&bf);
         let d = run_decided(&bf, trees, &mut dut).unwrap_or_else(|e| panic!("{set}: {e}"));
         println!(
-            "{set} {bundling}: {} bundles, {} jobs, {} clocks, utilisation {:.3}, {:.2} clocks/job; \
-             decided-only stream: {:.3} tests/clock",
+            "{set} {bundling} {rule}: {} bundles, {} jobs, {} clocks, utilisation {:.3}, {:.2} \
+             clocks/job; decided-only stream: {:.3} tests/clock",
             r.bundles,
             r.jobs,
             r.clocks,
