@@ -114,15 +114,17 @@ fn stream_float_rtl_matches_model_fp16_p13() {
 /// datapath.
 #[test]
 fn stream_wrong_model_is_caught() {
-    let bf = preset(1);
-    let mut dut = StreamRtl::<rtl::BundleStreamB12>::new(&bf);
-    let e = run_stream(
-        StreamChecker::with_model(StreamModel::new(bf, BUNDLE_FIX_LATENCY + 1)),
-        &mut dut,
-        StreamStim::new(bf, 4, 2_000),
-    )
-    .expect_err("a wrong latency must be caught");
-    println!("caught: {e}");
+    big_stack(|| {
+        let bf = preset(1);
+        let mut dut = StreamRtl::<rtl::BundleStreamB12>::new(&bf);
+        let e = run_stream(
+            StreamChecker::with_model(StreamModel::new(bf, BUNDLE_FIX_LATENCY + 1)),
+            &mut dut,
+            StreamStim::new(bf, 4, 2_000),
+        )
+        .expect_err("a wrong latency must be caught");
+        println!("caught: {e}");
+    });
     big_stack(|| {
         let f = FloatFormat::FP16;
         let mut dut = StreamRtl::<rtl::BundleStreamFp16>::new(&f);
