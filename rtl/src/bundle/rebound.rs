@@ -19,12 +19,16 @@
 //! # Timing of [`ReboundAcc`] (`L` = the pair's latency, at least 2)
 //! The two rays that enter the pair in a clock (from the store's read ports) ride a line of `L - 1`
 //! clocks beside it; the hull of the two is formed from the line's end and registered with them, so in
-//! the clock the pair answers, the bundle to fold is a choice between ray A, ray B and their hull. The
-//! accumulator is folded with all three (three [`Hull2`] from registers) and the pair's answer only
-//! chooses among the results, so the loop (accumulator -> [`Hull2`] -> choice -> accumulator) holds a
-//! single rescale and the answer's decode is off it (with the answer choosing before the fold, the b12
-//! processor placed and routed at 58.4 MHz, stopped on that path). The fold is associative and
-//! commutative, so folding a pair's hull equals folding its rays one at a time, as the model does.
+//! the clock the pair answers, the bundle to fold is a choice between ray A, ray B and their hull, and the
+//! one loop (accumulator -> [`Hull2`] -> accumulator) holds a single rescale. The fold is associative
+//! and commutative, so folding a pair's hull equals folding its rays one at a time, as the model does.
+//!
+//! On ECP5 (`scripts/timing`) this loop, with the pair's answer choosing the bundle before the fold,
+//! limits the b12 processor to 58.4 MHz. Folding the accumulator with all three candidates from
+//! registers and letting the answer choose after the fold was slower and larger (50.6 MHz and 11,863
+//! LUT4 against 7,880; the loop is then the accumulator's exponent through the hull itself): the
+//! shifter over the full exponent range is the long part, and a narrower exponent or a second clock in
+//! the loop are the next steps.
 
 use crate::cut::Line;
 pub use golden::bundle::rebound::J_BITS;
@@ -486,14 +490,8 @@ pub struct ReboundAcc<const G: usize, const D: usize, const T: usize> {
     /// The bundle to fold: B's alone or the pair's hull (`kept`), then A's when B is not kept (`fold`).
     kept: ItemSel<G, D, T>,
     fold: ItemSel<G, D, T>,
-    /// The accumulator with each candidate folded in (all three formed from registers, so the pair's
-    /// answer only chooses among them: `kept_h`, `fold_h`, as `kept`, `fold`), the choice with the
-    /// accumulator or without (`folded`), and the accumulator's next value.
-    hull_acc_ab: Hull2<G, D, T>,
-    hull_acc_a: Hull2<G, D, T>,
-    hull_acc_b: Hull2<G, D, T>,
-    kept_h: ItemSel<G, D, T>,
-    fold_h: ItemSel<G, D, T>,
+    /// The accumulator with this clock's bundle folded in, and the accumulator's next value.
+    hull_acc: Hull2<G, D, T>,
     folded: ItemSel<G, D, T>,
     acc_next: ItemSel<G, D, T>,
     acc: ItemLine<G, D, T>,
@@ -538,11 +536,7 @@ impl<const G: usize, const D: usize, const T: usize> ReboundAcc<G, D, T> {
             hull_ab: Default::default(),
             kept: Default::default(),
             fold: Default::default(),
-            hull_acc_ab: Default::default(),
-            hull_acc_a: Default::default(),
-            hull_acc_b: Default::default(),
-            kept_h: Default::default(),
-            fold_h: Default::default(),
+            hull_acc: Default::default(),
             folded: Default::default(),
             acc_next: Default::default(),
             acc: ItemLine::new(1),
@@ -609,10 +603,6 @@ impl<const G: usize, const D: usize, const T: usize> Logic for ReboundAcc<G, D, 
         self.kept.clear.next = false;
         self.fold.sel.next = self.keep_b.val();
         self.fold.clear.next = false;
-        self.kept_h.sel.next = self.keep_a.val();
-        self.kept_h.clear.next = false;
-        self.fold_h.sel.next = self.keep_b.val();
-        self.fold_h.clear.next = false;
         // Into the accumulator (or as the first bundle of the job), and the results.
         self.folded.sel.next = self.acc_valid.q.val();
         self.folded.clear.next = false;
@@ -630,28 +620,12 @@ impl<const G: usize, const D: usize, const T: usize> Logic for ReboundAcc<G, D, 
             self.fold.a_d[i].next = self.kept.y_d[i].val();
             self.fold.b_o[i].next = self.pa.q_o[i].val();
             self.fold.b_d[i].next = self.pa.q_d[i].val();
-            self.hull_acc_ab.x_o[i].next = self.acc.q_o[i].val();
-            self.hull_acc_ab.y_o[i].next = self.pab.q_o[i].val();
-            self.hull_acc_a.x_o[i].next = self.acc.q_o[i].val();
-            self.hull_acc_a.y_o[i].next = self.pa.q_o[i].val();
-            self.hull_acc_b.x_o[i].next = self.acc.q_o[i].val();
-            self.hull_acc_b.y_o[i].next = self.pb.q_o[i].val();
-            self.kept_h.a_o[i].next = self.hull_acc_ab.h_o[i].val();
-            self.kept_h.b_o[i].next = self.hull_acc_b.h_o[i].val();
-            self.fold_h.a_o[i].next = self.kept_h.y_o[i].val();
-            self.fold_h.b_o[i].next = self.hull_acc_a.h_o[i].val();
-            self.folded.a_o[i].next = self.fold_h.y_o[i].val();
-            self.hull_acc_ab.x_d[i].next = self.acc.q_d[i].val();
-            self.hull_acc_ab.y_d[i].next = self.pab.q_d[i].val();
-            self.hull_acc_a.x_d[i].next = self.acc.q_d[i].val();
-            self.hull_acc_a.y_d[i].next = self.pa.q_d[i].val();
-            self.hull_acc_b.x_d[i].next = self.acc.q_d[i].val();
-            self.hull_acc_b.y_d[i].next = self.pb.q_d[i].val();
-            self.kept_h.a_d[i].next = self.hull_acc_ab.h_d[i].val();
-            self.kept_h.b_d[i].next = self.hull_acc_b.h_d[i].val();
-            self.fold_h.a_d[i].next = self.kept_h.y_d[i].val();
-            self.fold_h.b_d[i].next = self.hull_acc_a.h_d[i].val();
-            self.folded.a_d[i].next = self.fold_h.y_d[i].val();
+            self.hull_acc.x_o[i].next = self.acc.q_o[i].val();
+            self.hull_acc.x_d[i].next = self.acc.q_d[i].val();
+            self.hull_acc.y_o[i].next = self.fold.y_o[i].val();
+            self.hull_acc.y_d[i].next = self.fold.y_d[i].val();
+            self.folded.a_o[i].next = self.hull_acc.h_o[i].val();
+            self.folded.a_d[i].next = self.hull_acc.h_d[i].val();
             self.folded.b_o[i].next = self.fold.y_o[i].val();
             self.folded.b_d[i].next = self.fold.y_d[i].val();
             self.acc_next.a_o[i].next = self.folded.y_o[i].val();
@@ -674,17 +648,9 @@ impl<const G: usize, const D: usize, const T: usize> Logic for ReboundAcc<G, D, 
             self.kept.b_t[i].next = self.pb.q_t[i].val();
             self.fold.a_t[i].next = self.kept.y_t[i].val();
             self.fold.b_t[i].next = self.pa.q_t[i].val();
-            self.hull_acc_ab.x_t[i].next = self.acc.q_t[i].val();
-            self.hull_acc_ab.y_t[i].next = self.pab.q_t[i].val();
-            self.hull_acc_a.x_t[i].next = self.acc.q_t[i].val();
-            self.hull_acc_a.y_t[i].next = self.pa.q_t[i].val();
-            self.hull_acc_b.x_t[i].next = self.acc.q_t[i].val();
-            self.hull_acc_b.y_t[i].next = self.pb.q_t[i].val();
-            self.kept_h.a_t[i].next = self.hull_acc_ab.h_t[i].val();
-            self.kept_h.b_t[i].next = self.hull_acc_b.h_t[i].val();
-            self.fold_h.a_t[i].next = self.kept_h.y_t[i].val();
-            self.fold_h.b_t[i].next = self.hull_acc_a.h_t[i].val();
-            self.folded.a_t[i].next = self.fold_h.y_t[i].val();
+            self.hull_acc.x_t[i].next = self.acc.q_t[i].val();
+            self.hull_acc.y_t[i].next = self.fold.y_t[i].val();
+            self.folded.a_t[i].next = self.hull_acc.h_t[i].val();
             self.folded.b_t[i].next = self.fold.y_t[i].val();
             self.acc_next.a_t[i].next = self.folded.y_t[i].val();
             self.acc_next.b_t[i].next = self.acc.q_t[i].val();
@@ -698,17 +664,9 @@ impl<const G: usize, const D: usize, const T: usize> Logic for ReboundAcc<G, D, 
         self.kept.b_j.next = self.pb.q_j.val();
         self.fold.a_j.next = self.kept.y_j.val();
         self.fold.b_j.next = self.pa.q_j.val();
-        self.hull_acc_ab.x_j.next = self.acc.q_j.val();
-        self.hull_acc_ab.y_j.next = self.pab.q_j.val();
-        self.hull_acc_a.x_j.next = self.acc.q_j.val();
-        self.hull_acc_a.y_j.next = self.pa.q_j.val();
-        self.hull_acc_b.x_j.next = self.acc.q_j.val();
-        self.hull_acc_b.y_j.next = self.pb.q_j.val();
-        self.kept_h.a_j.next = self.hull_acc_ab.h_j.val();
-        self.kept_h.b_j.next = self.hull_acc_b.h_j.val();
-        self.fold_h.a_j.next = self.kept_h.y_j.val();
-        self.fold_h.b_j.next = self.hull_acc_a.h_j.val();
-        self.folded.a_j.next = self.fold_h.y_j.val();
+        self.hull_acc.x_j.next = self.acc.q_j.val();
+        self.hull_acc.y_j.next = self.fold.y_j.val();
+        self.folded.a_j.next = self.hull_acc.h_j.val();
         self.folded.b_j.next = self.fold.y_j.val();
         self.acc_next.a_j.next = self.folded.y_j.val();
         self.acc_next.b_j.next = self.acc.q_j.val();

@@ -1158,13 +1158,17 @@ registers keep their contents.",
         enc = p.enc,
         grid = p.format,
     );
-    // The reset paragraph also covers the re-bounding registers.
-    let rules = rules.replace(
+    // The reset paragraph also covers the re-bounding registers, where there are some.
+    let rules = if rb_rule.is_empty() {
+        rules
+    } else {
+        rules.replace(
         "The ray store and the report \
 registers keep their contents.",
         "The ray store and the report registers (re-bounding's included) keep their contents; the \
 bundle being re-bounded is dropped.",
-    );
+        )
+    };
     FamilyDoc {
         what,
         params,
