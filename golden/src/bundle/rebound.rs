@@ -7,7 +7,7 @@
 //! A ray is quantised with the direction scale of its own largest component: `d * 2^j`, with `j` from
 //! [`crate::format::fixed::dir_scale_exp`], and its t codes in the unit of that scaled direction
 //! (`t * 2^(FT - k - j)`, see [`crate::bundle::fix`]). The pair never needs `j` (the test is the same for
-//! `d * 2^j` and `t * 2^-j`), so the ray store does not hold it; but the codes of two rays with different
+//! `d * 2^j` and `t * 2^-j`), so a store that only feeds the pair need not hold it; but the codes of two rays with different
 //! `j` are on different scales, and their componentwise minimum means nothing. Re-bounding therefore
 //! needs each kept ray's `j` ([`ScaledBundle`]).
 //!
@@ -37,7 +37,7 @@ use crate::error::Error;
 use crate::format::fixed::GridMap;
 
 /// Bits of a direction exponent `j` on a processor's ports (two's complement): `-128..=127`, directions
-/// whose largest component is within `2^-127 .. 2^128`.
+/// whose largest component is within `2^-127 .. 2^129` (`j = -floor(log2 max |d_a|)`).
 pub const J_BITS: usize = 8;
 
 /// Whether `j` fits [`J_BITS`].

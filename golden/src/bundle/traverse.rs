@@ -12,7 +12,8 @@
 //! to both children of an inner node, as one bundle again ([`Rebound`]): the original bundle, the smallest
 //! world bundle around the rays kept, quantised again, or the hull of the kept rays' stored tiny bundles
 //! ([`crate::bundle::rebound`], the rule a results processor can follow while the rays stream through the
-//! pair during a split, at no extra cycle; the RTL does not do that yet). Distances
+//! pair during a split, at no extra cycle; the fixed streaming processor `rtl::bundle::stream::BundleStream`
+//! does, bit for bit). Distances
 //! are not shortened by hits (an "all hits" traversal), so the node visits do not depend on child order.
 //!
 //! Every answer is checked: "all hit" with a ray of the tested bundle that misses (every ray of the

@@ -22,7 +22,8 @@
 //! # Inputs
 //! - `clock`; `rst` (synchronous: high at a clock edge, every job in flight, queued or being split is
 //!   dropped and never reports; a `start` in that clock is not taken, a ray store write is; the ray
-//!   store and the result registers keep their contents);
+//!   store and the result registers keep their contents, except that a job answered in the `rst` clock
+//!   itself still loads them, with no `done`, as the model does);
 //! - ray store write port: `ray_we`, `ray_addr` (6 bits: `[5:4]` the set, `[3:0]` the ray), `ray_o_lo`,
 //!   `ray_o_hi`, `ray_d_lo`, `ray_d_hi` (arrays over x, y, z), `ray_t` (the ray's `t_hi`): the ray as a
 //!   quantised tiny bundle, as `BundleSplit`'s; and for re-bounding `ray_t_lo` (its `t_lo`) and `ray_j`
@@ -415,9 +416,10 @@ pub fn decode_common_out(word: &dyn Fn(&str) -> Option<u64>) -> Option<StreamOut
 }
 
 /// The re-bounded bundle on a fixed processor's `rb_*` ports (widths `g`, `d`, `t`; `word(base,
-/// axis)` a port's value): `None` when `rb_valid` is low and every field is zero, which is what the
-/// block drives then (any other pattern decodes as a bundle, so that a comparison with the model catches
-/// it).
+/// axis)` a port's value): the bundle when `rb_valid` is high, `None` when it is low and every field is
+/// zero (what the block drives then). Fields that are not zero while `rb_valid` is low decode as the
+/// bundle with the impossible exponent `i32::MAX`, so that a comparison with the model catches a wrong
+/// `rb_valid` in either direction. The outer `None`: a port is missing.
 pub fn decode_rebound(
     g: usize,
     d: usize,
@@ -443,7 +445,13 @@ pub fn decode_rebound(
         j: sext(word("rb_j", 0)?, J_BITS) as i32,
     };
     let valid = word("rb_valid", 0)? != 0;
-    Some((valid || sb != ScaledBundle::default()).then_some(sb))
+    Some(if valid {
+        Some(sb)
+    } else if sb == ScaledBundle::default() {
+        None
+    } else {
+        Some(ScaledBundle { j: i32::MAX, ..sb })
+    })
 }
 
 /// The store address `{set, ray}` of a write.

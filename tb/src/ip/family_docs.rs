@@ -818,13 +818,14 @@ not be the bundle's own rays, but only then does the report describe them.\n\n",
         t_lo = if stores_t_lo {
             format!(
                 "for re-bounding, its floored `t_max` and its `j` are stored too: \
-                 `ray_t_lo = floor(t_max * 2^({ft} - k - j))` (the largest finite code when it reaches \
-                 +inf), `ray_j = j` ({jb}-bit two's complement, so a ray's largest direction component \
+                 `ray_t_lo = floor(t_max * 2^({ft} - k - j))` (the largest finite code when a finite \
+                 `t_max` reaches +inf, the +inf code for `t_max = +inf`), `ray_j = j` ({jb}-bit two's \
+                 complement, `j = -floor(log2 max_a |d_a|)`, so a ray's largest direction component \
                  must lie in `[2^-{jmax}, 2^{jmin})`).",
                 ft = fmt.ft,
                 jb = rtl::bundle::rebound::J_BITS,
                 jmax = (1 << (rtl::bundle::rebound::J_BITS - 1)) - 1,
-                jmin = 1 << (rtl::bundle::rebound::J_BITS - 1),
+                jmin = (1 << (rtl::bundle::rebound::J_BITS - 1)) + 1,
             )
         } else {
             "its floored `t_max` (`t_lo`) is not stored.".to_string()
@@ -1129,7 +1130,7 @@ fn stream_doc(p: StreamPairText) -> FamilyDoc {
         "{grid}
 
 {enc}**Job protocol** (clock `s` is the clock period whose ending rising edge samples the inputs):
-1. **Load rays**: in every clock with `ray_we = 1` the ray on `ray_o_lo` .. `ray_t` is written to entry \
+1. **Load rays**: in every clock with `ray_we = 1` the ray on the `ray_*` ports is written to entry \
 `ray_addr` at the end of the clock, at any time (also during `rst`). A job's active rays (in its set) \
 must be written no later than its start clock and not rewritten until its `done`; with {sets} sets, the \
 rays of the next bundle can be written while jobs of the others run.
@@ -1165,7 +1166,8 @@ registers keep their contents.",
         rules.replace(
         "The ray store and the report \
 registers keep their contents.",
-        "The ray store and the report registers (re-bounding's included) keep their contents; the \
+        "The ray store and the report registers (re-bounding's included) keep their contents, except \
+that a job whose last answer comes in the `rst` clock itself still loads them (with no `done`); the \
 bundle being re-bounded is dropped.",
         )
     };

@@ -288,11 +288,15 @@ fn scene_jobs_replay() {
     let keep = scene_streams(&sc, 1, (24, 16), 4, (16, 0.2), &bf, false).unwrap();
     let stored = scene_streams(&sc, 1, (24, 16), 4, (16, 0.2), &bf, true).unwrap();
     assert_eq!(keep.len(), 3);
-    // Re-bounding hands some children a bundle of their own.
-    let rebounds = |t: &tb::bundle::stream_scene::JobTrees| {
-        t.jobs.iter().filter(|j| j.rebound.is_some()).count()
+    // Re-bounding hands some jobs a bundle other than their root's, and never without it.
+    let rebounded = |t: &tb::bundle::stream_scene::JobTrees| {
+        t.jobs
+            .iter()
+            .filter(|j| j.job.bundle != t.jobs[t.bundles[j.bundle].1].job.bundle)
+            .count()
     };
-    assert!(stored.iter().map(|s| rebounds(&s.2)).sum::<usize>() > 0);
+    assert!(stored.iter().map(|s| rebounded(&s.2)).sum::<usize>() > 0);
+    assert_eq!(keep.iter().map(|s| rebounded(&s.2)).sum::<usize>(), 0);
     let differ = keep
         .iter()
         .zip(&stored)
