@@ -23,12 +23,15 @@
 //! one loop (accumulator -> [`Hull2`] -> accumulator) holds a single rescale. The fold is associative
 //! and commutative, so folding a pair's hull equals folding its rays one at a time, as the model does.
 //!
-//! On ECP5 (`scripts/timing`) this loop, with the pair's answer choosing the bundle before the fold,
-//! limits the b12 processor to 58.4 MHz. Folding the accumulator with all three candidates from
-//! registers and letting the answer choose after the fold was slower and larger (50.6 MHz and 11,863
-//! LUT4 against 7,880; the loop is then the accumulator's exponent through the hull itself): the
-//! shifter over the full exponent range is the long part, and a narrower exponent or a second clock in
-//! the loop are the next steps.
+//! On ECP5 (`scripts/timing`, seed 1) this loop, with the pair's answer choosing the bundle before the
+//! fold, limited the b12 processor to 58.4 MHz and the one over the 5-clock pair to 57.5 MHz while
+//! [`Hull2`] clamped the shift amount and subtracted it from the width in front of its shifters; with
+//! the masks made beside the shifts instead, the b12 processor reaches 63.0 MHz, limited by the pair's
+//! own edge test, and the 5-clock one 60.8 MHz, still in this loop. Two variants were slower: folding
+//! the accumulator with all three candidates from registers and letting the answer choose after the
+//! fold (50.6 MHz, 11,863 LUT4 against 7,880), and rescaling both operands of [`Hull2`] by their own
+//! clamped differences instead of swapping them (50.1 MHz, 8,918 LUT4). A second clock in the loop
+//! (the answer's choice registered, the report a clock later) is the next step.
 
 use crate::cut::Line;
 pub use golden::bundle::rebound::J_BITS;
@@ -66,19 +69,18 @@ pub struct Hull2<const G: usize, const D: usize, const T: usize> {
     msb_t: Constant<Bits<T>>,
     msb_j: Constant<Bits<J_BITS>>,
     one_d: Constant<Bits<D>>,
-    width_d: Constant<Bits<S_BITS>>,
-    top_t: Constant<Bits<S_BITS>>,
+    ones_d: Constant<Bits<D>>,
     pinf: Constant<Bits<T>>,
     /// Where each t code saturates: the largest finite code, `+inf`.
     sat: [Constant<Bits<T>>; 2],
     /// `x` has the larger exponent: `x` is the one rescaled.
     x_big: Signal<Local, Bit>,
+    /// The difference of the exponents, unclamped (a shift by `D` or more leaves a direction code 0 or
+    /// -1, as any larger one would).
     s: Signal<Local, Bits<S_BITS>>,
-    /// `s`, at most `D` (every larger shift of a direction code gives the same result), and `D` minus it.
-    sc: Signal<Local, Bits<S_BITS>>,
-    back_d: Signal<Local, Bits<S_BITS>>,
-    /// `T - 1 - s`.
-    back_t: Signal<Local, Bits<S_BITS>>,
+    /// The direction bits a shift by `s` drops; the t bits whose shift by `s` passes the finite codes.
+    lost_d: Signal<Local, Bits<D>>,
+    over_t: Signal<Local, Bits<T>>,
     big_d: [Signal<Local, Bits<D>>; 6],
     small_d: [Signal<Local, Bits<D>>; 6],
     floor_d: [Signal<Local, Bits<D>>; 6],
@@ -111,15 +113,13 @@ impl<const G: usize, const D: usize, const T: usize> Default for Hull2<G, D, T> 
             msb_t: Constant::new(bits(1 << (T - 1))),
             msb_j: Constant::new(bits(1 << (J_BITS - 1))),
             one_d: Constant::new(bits(1)),
-            width_d: Constant::new(bits(D as u64)),
-            top_t: Constant::new(bits((T - 1) as u64)),
+            ones_d: Constant::new(bits((1u64 << D) - 1)),
             pinf: Constant::new(bits(pinf)),
             sat: [Constant::new(bits(pinf - 1)), Constant::new(bits(pinf))],
             x_big: Default::default(),
             s: Default::default(),
-            sc: Default::default(),
-            back_d: Default::default(),
-            back_t: Default::default(),
+            lost_d: Default::default(),
+            over_t: Default::default(),
             big_d: Default::default(),
             small_d: Default::default(),
             floor_d: Default::default(),
@@ -144,15 +144,12 @@ impl<const G: usize, const D: usize, const T: usize> Logic for Hull2<G, D, T> {
             self.s.next = self.y_j.val() - self.x_j.val();
             self.h_j.next = self.x_j.val();
         }
-        if self.s.val() > self.width_d.val() {
-            self.sc.next = self.width_d.val();
-        } else {
-            self.sc.next = self.s.val();
-        }
-        self.back_d.next = self.width_d.val() - self.sc.val();
-        self.back_t.next = self.top_t.val() - self.s.val();
-        // Directions: an arithmetic shift (a negative code is the complement of a non-negative one); a
-        // `hi` code rounds up when a bit shifted out (moved to the top by `back_d`) is set.
+        // Masks made from `s` beside the shifts (not a clamp or a difference in front of them): the low
+        // `s` direction bits, and the top `s` of the `T - 1` value bits of a t code.
+        self.lost_d.next = !(self.ones_d.val() << self.s.val());
+        self.over_t.next = !(self.pinf.val() >> self.s.val());
+        // Directions: an arithmetic shift (a negative code is the complement of a non-negative one; a
+        // shift by `D` or more leaves 0 or -1); a `hi` code rounds up when a bit shifted out is set.
         for i in 0..6 {
             if self.x_big.val() {
                 self.big_d[i].next = self.x_d[i].val();
@@ -162,19 +159,20 @@ impl<const G: usize, const D: usize, const T: usize> Logic for Hull2<G, D, T> {
                 self.small_d[i].next = self.x_d[i].val();
             }
             if (self.big_d[i].val() & self.msb_d.val()).any() {
-                self.floor_d[i].next = !((!self.big_d[i].val()) >> self.sc.val());
+                self.floor_d[i].next = !((!self.big_d[i].val()) >> self.s.val());
             } else {
-                self.floor_d[i].next = self.big_d[i].val() >> self.sc.val();
+                self.floor_d[i].next = self.big_d[i].val() >> self.s.val();
             }
             self.scaled_d[i].next = self.floor_d[i].val();
         }
         for i in 3..6 {
-            if (self.big_d[i].val() << self.back_d.val()).any() {
+            if (self.big_d[i].val() & self.lost_d.val()).any() {
                 self.scaled_d[i].next = self.floor_d[i].val() + self.one_d.val();
             }
         }
-        // t codes: for 0 < t < 2^(T-1), t 2^s >= 2^(T-1) exactly when s >= T - 1 or t >> (T - 1 - s)
-        // is not 0; the result equal to the +inf code saturates too.
+        // t codes: for 0 < t < 2^(T-1), t 2^s >= 2^(T-1) exactly when t has a bit at T - 1 - s or above
+        // (`over_t`, every value bit once s >= T - 1). A result equal to the +inf code (odd) needs s = 0,
+        // where t is kept anyway.
         for i in 0..2 {
             if self.x_big.val() {
                 self.big_t[i].next = self.x_t[i].val();
@@ -185,10 +183,7 @@ impl<const G: usize, const D: usize, const T: usize> Logic for Hull2<G, D, T> {
             }
             self.shl_t[i].next = self.big_t[i].val() << self.s.val();
             self.scaled_t[i].next = self.shl_t[i].val();
-            if (self.s.val() >= self.top_t.val())
-                | (self.big_t[i].val() >> self.back_t.val()).any()
-                | (self.shl_t[i].val() == self.pinf.val())
-            {
+            if (self.big_t[i].val() & self.over_t.val()).any() {
                 self.scaled_t[i].next = self.sat[i].val();
             }
             if (self.big_t[i].val() & self.msb_t.val()).any() | !self.big_t[i].val().any() {
