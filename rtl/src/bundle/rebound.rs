@@ -93,7 +93,6 @@ pub struct Hull2<const G: usize, const D: usize, const T: usize> {
 
 impl<const G: usize, const D: usize, const T: usize> Default for Hull2<G, D, T> {
     fn default() -> Self {
-        assert!(D < 1 << S_BITS && T < 1 << S_BITS);
         let pinf = (1u64 << (T - 1)) - 1;
         Self {
             x_o: Default::default(),
