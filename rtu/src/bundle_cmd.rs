@@ -1,7 +1,8 @@
 //! `rtu bundle-scenes`: ray bundles on scenes with the AllHit / AnyHit pair:
 //! per scene, ray set, bundling and datapath, the fraction of bundle-box tests decided without splitting
 //! against the ideal, and tester cycles against testing the rays one by one, under each re-bounding rule
-//! (column `rebound`: `keep`, `world`, and for fixed datapaths `stored`, the results processor's rule). The
+//! (column `rebound`: `keep`, `world`, and for the fixed and float datapaths `stored`, the results
+//! processor's rule). The
 //! traversal and its checks are [`golden::bundle::traverse`]; the bundling [`golden::bundle::build`].
 
 use crate::list;
@@ -219,10 +220,10 @@ pub fn scenes(a: &Args, out: &Path) -> Result<String, String> {
                 .expect("every bundling is of a known ray set");
             let nb = bd.built.len() as u64;
             for path in &built_paths {
-                // Stored-ray re-bounding is a rule of the fixed datapath's results processor.
+                // Stored-ray re-bounding is the results processors' rule: the exact path has no store.
                 let rules = Rebound::ALL
                     .into_iter()
-                    .filter(|r| *r != Rebound::Stored || matches!(path, BundlePath::Fix(..)));
+                    .filter(|r| *r != Rebound::Stored || !matches!(path, BundlePath::Exact));
                 for rebound in rules {
                     for (mname, metric) in &metrics {
                         let pb = ProgressBar::new(nb);

@@ -246,7 +246,7 @@ pub(crate) fn origin_box(b: &Bundle) -> Aabb {
 }
 
 /// The exponent `j` of the bundle's direction scaling `2^j` (see [`dir_scale_exp`]).
-pub(crate) fn bundle_dir_exp(b: &Bundle) -> i32 {
+pub fn bundle_dir_exp(b: &Bundle) -> i32 {
     dir_scale_exp(DVec3::from(b.d_lo).abs().max(DVec3::from(b.d_hi).abs()))
 }
 

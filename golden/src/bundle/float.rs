@@ -129,9 +129,19 @@ fn round_scaled(f: &FloatFormat, x: f64, j: i32, m: Rounding) -> u32 {
 /// Quantises a world bundle into `f`. Errors name the bad input: an invalid bundle, an origin beyond the
 /// format's range.
 pub fn quantize_bundle(f: &FloatFormat, b: &Bundle) -> Result<FloatBundle, Error> {
+    quantize_bundle_at(f, b, bundle_dir_exp(b))
+}
+
+/// Quantises a world bundle into `f` on the direction scale `2^j` of the caller's choice (directions
+/// times `2^j`, t values times `2^-j`, each rounded outward): [`quantize_bundle`] takes the bundle's own
+/// exponent. The pair's answers do not depend on the scale (a ray is the same for `d 2^j` and
+/// `t 2^-j`); a float keeps its relative precision under a power-of-two scale, so a ray put on the scale
+/// of a bundle around it loses nothing unless a value leaves the format's normal range (then it is still
+/// rounded outward). The rays of one bundle on one scale is what float re-bounding needs
+/// ([`crate::bundle::rebound`]).
+pub fn quantize_bundle_at(f: &FloatFormat, b: &Bundle, j: i32) -> Result<FloatBundle, Error> {
     b.validate()?;
     let o = quantize_box(f, &origin_box(b)).map_err(|e| rename_error(e, "box", "bundle origin"))?;
-    let j = bundle_dir_exp(b);
     Ok(FloatBundle {
         o_lo: o.lo,
         o_hi: o.hi,

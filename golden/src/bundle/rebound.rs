@@ -30,11 +30,29 @@
 //! (floor and ceil are monotone, and `floor(floor(x 2^a) / 2^s) = floor(x 2^(a-s))`), and the t range of
 //! the hull contains `q`'s (`floor(y) 2^s <= floor(y 2^s)`): never narrower, so every answer of the pair on
 //! the hull stays sound, and equal when all the kept rays share one `j`. The tests below check all three.
+//!
+//! # On the float datapath: one scale per bundle, no rescaling
+//! A float keeps its relative precision under a power-of-two scale, so the float processor's rays need
+//! not each be on their own direction scale: the rays of a bundle are stored on the bundle's scale
+//! ([`crate::bundle::float::quantize_bundle_at`] with the bundle's exponent), and a re-bounded bundle
+//! stays on it, down the whole traversal. The hull of two float bundles on one scale is then the
+//! componentwise `min` of the `lo` fields and `max` of the `hi` fields ([`float_hull`], [`rebound_float`]),
+//! with no exponent to carry and nothing to shift. It is exact: rounding is monotone, so the `min` of the
+//! rays' rounded-down values is the rounded-down `min` (the hull equals the world bundle around the kept
+//! rays quantised on the same scale, as values). It is sound on any stored rays, whatever their scale:
+//! each ray's own tuple (origin, scaled direction, scaled `t`) lies inside its tiny bundle, hence inside
+//! the hull; only its tightness needs one scale.
+//!
+//! The order is the numeric one with `-0` below `+0` ([`float_order_key`]), so that `min` and `max` are
+//! defined on bit patterns and the fold is associative and commutative bit for bit (a NaN code, which
+//! no quantisation yields, orders beyond the infinity of its sign).
 
 use crate::bundle::edge::Bundle;
 use crate::bundle::fix::{bundle_dir_exp, quantize_bundle, BundleFixFormat, FixBundle};
+use crate::bundle::float::FloatBundle;
 use crate::error::Error;
 use crate::format::fixed::GridMap;
+use crate::format::float::FloatFormat;
 
 /// Bits of a direction exponent `j` on a processor's ports (two's complement): `-128..=127`, directions
 /// whose largest component is within `2^-127 .. 2^129` (`j = -floor(log2 max |d_a|)`).
@@ -147,6 +165,47 @@ pub fn rebound_fix(
 ) -> Option<ScaledBundle> {
     kept.into_iter().fold(None, |acc: Option<ScaledBundle>, r| {
         Some(acc.map_or(r, |a| a.hull(bf, &r)))
+    })
+}
+
+/// The order key of a float code of `f`: its magnitude bits when the sign is clear, else `-1 -` its
+/// magnitude bits. Keys compare as the numbers do, except that `-0` (key `-1`) is below `+0` (key 0).
+/// As an `N`-bit two's-complement word it is the code with its magnitude bits inverted when the sign
+/// is set, which is how the hardware compares float codes as signed integers.
+pub fn float_order_key(f: &FloatFormat, x: u32) -> i64 {
+    let sign = f.sign_bit();
+    let mag = i64::from(x & (sign - 1));
+    if x & sign != 0 {
+        -1 - mag
+    } else {
+        mag
+    }
+}
+
+/// The hull of two float bundles on one direction scale: `min` of every `lo` field and `max` of every
+/// `hi` field in the order of [`float_order_key`]; see the module documentation.
+pub fn float_hull(f: &FloatFormat, a: &FloatBundle, b: &FloatBundle) -> FloatBundle {
+    let key = |x: u32| float_order_key(f, x);
+    let lo = |x: u32, y: u32| if key(y) < key(x) { y } else { x };
+    let hi = |x: u32, y: u32| if key(y) > key(x) { y } else { x };
+    FloatBundle {
+        o_lo: std::array::from_fn(|i| lo(a.o_lo[i], b.o_lo[i])),
+        o_hi: std::array::from_fn(|i| hi(a.o_hi[i], b.o_hi[i])),
+        d_lo: std::array::from_fn(|i| lo(a.d_lo[i], b.d_lo[i])),
+        d_hi: std::array::from_fn(|i| hi(a.d_hi[i], b.d_hi[i])),
+        t_lo: lo(a.t_lo, b.t_lo),
+        t_hi: hi(a.t_hi, b.t_hi),
+    }
+}
+
+/// The float re-bounded bundle around `kept` (tiny float bundles, in any order), `None` when nothing is
+/// kept.
+pub fn rebound_float(
+    f: &FloatFormat,
+    kept: impl IntoIterator<Item = FloatBundle>,
+) -> Option<FloatBundle> {
+    kept.into_iter().fold(None, |acc: Option<FloatBundle>, r| {
+        Some(acc.map_or(r, |a| float_hull(f, &a, &r)))
     })
 }
 
@@ -341,6 +400,163 @@ mod tests {
                 outcomes.iter().all(|&c| c > 100),
                 "{}: outcomes (all hit, all miss, neither) {outcomes:?}",
                 bf.name()
+            );
+        }
+    }
+
+    /// Keys order every non-NaN code of binary16 as its value does, with `-0` just below `+0`, and
+    /// are distinct and fit 16 bits (two's complement).
+    #[test]
+    fn float_order_keys_are_the_numeric_order_with_minus_zero_below_plus_zero() {
+        let f = FloatFormat::FP16;
+        let codes: Vec<u32> = (0..1u32 << 16).filter(|&x| !f.is_nan(x)).collect();
+        let mut by_key = codes.clone();
+        by_key.sort_by_key(|&x| float_order_key(&f, x));
+        for w in by_key.windows(2) {
+            let (a, b) = (f.to_f64(w[0]), f.to_f64(w[1]));
+            assert!(
+                a < b || (a == 0.0 && b == 0.0 && w[0] == f.zero(true) && w[1] == f.zero(false)),
+                "{:#x} ({a}) before {:#x} ({b})",
+                w[0],
+                w[1]
+            );
+        }
+        assert_eq!(float_order_key(&f, f.zero(true)), -1);
+        assert_eq!(float_order_key(&f, f.zero(false)), 0);
+        assert!(codes
+            .iter()
+            .all(|&x| (-(1 << 15)..1 << 15).contains(&float_order_key(&f, x))));
+    }
+
+    fn float_formats() -> [FloatFormat; 3] {
+        [FloatFormat::FP16, FloatFormat::BF16, FloatFormat::FP32]
+    }
+
+    /// Each ray of `rays` as a tiny float bundle on the direction scale `2^j` (`None`: its own scale).
+    fn float_rays(f: &FloatFormat, rays: &[Ray], j: Option<i32>) -> Option<Vec<FloatBundle>> {
+        rays.iter()
+            .map(|r| {
+                let b = Bundle::of_ray(r).ok()?;
+                let j = j.unwrap_or_else(|| bundle_dir_exp(&b));
+                crate::bundle::float::quantize_bundle_at(f, &b, j).ok()
+            })
+            .collect()
+    }
+
+    /// Rays on their bundle's scale: the hull is the world bundle around the kept rays quantised on that
+    /// scale (every field equal as a value), holds every kept ray's tiny bundle, and does not depend on
+    /// the order of the fold (bit for bit).
+    #[test]
+    fn the_float_hull_is_the_quantised_world_hull_on_one_scale() {
+        use crate::bundle::float::quantize_bundle_at;
+        for (i, f) in float_formats().into_iter().enumerate() {
+            let mut gen = BundleGen::new(700 + i as u64, LO, HI, 0.6);
+            let mut rng = Pcg64::seed_from_u64(27 + i as u64);
+            let (mut n, mut mixed) = (0, 0);
+            while n < 3_000 {
+                let c = gen.next_case();
+                let j = bundle_dir_exp(&c.bundle);
+                let Some(rays) = float_rays(&f, &c.rays, Some(j)) else {
+                    continue;
+                };
+                let keep: Vec<usize> = (0..rays.len()).filter(|_| rng.gen_bool(0.6)).collect();
+                if keep.is_empty() {
+                    continue;
+                }
+                let kept_world: Vec<Ray> = keep.iter().map(|&k| c.rays[k]).collect();
+                let Ok(world) =
+                    Bundle::around(&kept_world).and_then(|b| quantize_bundle_at(&f, &b, j))
+                else {
+                    continue;
+                };
+                n += 1;
+                let mut kept: Vec<FloatBundle> = keep.iter().map(|&k| rays[k]).collect();
+                let h = rebound_float(&f, kept.iter().copied()).unwrap();
+                kept.shuffle(&mut rng);
+                assert_eq!(rebound_float(&f, kept.iter().copied()), Some(h));
+                mixed += kept_world
+                    .iter()
+                    .any(|r| bundle_dir_exp(&Bundle::of_ray(r).unwrap()) != j)
+                    as usize;
+                let ctx = || {
+                    format!(
+                        "{}: kept {kept_world:?}\n  hull {h:?}\n  world {world:?}",
+                        f.name()
+                    )
+                };
+                let fields = |b: &FloatBundle| {
+                    let mut v = vec![b.t_lo, b.t_hi];
+                    for a in [b.o_lo, b.o_hi, b.d_lo, b.d_hi] {
+                        v.extend(a);
+                    }
+                    v
+                };
+                for (x, y) in fields(&h).into_iter().zip(fields(&world)) {
+                    assert!(f.eq(x, y), "{}", ctx());
+                }
+                for r in &kept {
+                    assert_eq!(rebound_float(&f, [h, *r]), Some(h), "{}", ctx());
+                }
+            }
+            assert!(
+                mixed > 100,
+                "{}: only {mixed} kept sets with rays of another scale",
+                f.name()
+            );
+        }
+    }
+
+    /// The pair's answers on the float hull are sound for the rays kept (exact oracle), with the rays on
+    /// their bundle's scale and on their own scales, and every outcome occurs.
+    #[test]
+    fn the_pair_on_the_float_hull_never_contradicts_a_kept_ray() {
+        use crate::bundle::float::{all_hit_float, all_miss_float, quantize_box_pair};
+        for (i, f) in float_formats().into_iter().enumerate() {
+            let mut gen = BundleGen::new(900 + i as u64, LO, HI, 0.6);
+            let mut rng = Pcg64::seed_from_u64(37 + i as u64);
+            let mut outcomes = [0usize; 3];
+            let mut n = 0;
+            while n < 3_000 {
+                let c = gen.next_case();
+                let own = n % 2 == 1;
+                let j = (!own).then(|| bundle_dir_exp(&c.bundle));
+                let (Some(rays), Ok(boxes)) =
+                    (float_rays(&f, &c.rays, j), quantize_box_pair(&f, &c.bounds))
+                else {
+                    continue;
+                };
+                let keep: Vec<usize> = (0..rays.len()).filter(|_| rng.gen_bool(0.5)).collect();
+                let Some(h) = rebound_float(&f, keep.iter().map(|&k| rays[k])) else {
+                    continue;
+                };
+                n += 1;
+                let hits: Vec<bool> = keep
+                    .iter()
+                    .map(|&k| ray_hits_exact(&c.rays[k], &c.bounds).unwrap())
+                    .collect();
+                let all_hit = all_hit_float(&f, &h, &boxes.inner);
+                let all_miss = all_miss_float(&f, &h, &boxes.outer);
+                let ctx = || {
+                    format!(
+                        "{}: box {:?}\n  hull {h:?}\n  hits {hits:?}",
+                        f.name(),
+                        c.bounds
+                    )
+                };
+                assert!(!all_miss || hits.iter().all(|&x| !x), "{}", ctx());
+                assert!(!all_hit || hits.iter().all(|&x| x), "{}", ctx());
+                outcomes[if all_hit {
+                    0
+                } else if all_miss {
+                    1
+                } else {
+                    2
+                }] += 1;
+            }
+            assert!(
+                outcomes.iter().all(|&c| c > 100),
+                "{}: outcomes (all hit, all miss, neither) {outcomes:?}",
+                f.name()
             );
         }
     }

@@ -23,9 +23,9 @@
 //!   answers are ORed into one accumulator (ray pairs come back in the order they went, one job after
 //!   another); the job's last pair reports. Each ray rides beside the pair as it was read from the
 //!   store; the kept ones (answer "may hit") are folded into the job's re-bounded bundle
-//!   ([`PairDatapath::gather`]: on the fixed datapath the hull of [`crate::bundle::rebound`], whose fold
-//!   is associative and commutative, so the block may gather a pair's two rays first), which reports
-//!   with the job.
+//!   ([`PairDatapath::gather`]: the hull of [`crate::bundle::rebound`], on the fixed datapath with its
+//!   rescaling, on the float one a `min`/`max` of the fields; both folds are associative and
+//!   commutative, so the block may gather a pair's two rays first), which reports with the job.
 //! - The engine holds one job: each clock it addresses the next two active rays in the store (indices
 //!   and set), and loads the queue's head in the clock it addresses its job's last pair (or whenever it
 //!   is idle), so that consecutive split jobs issue without a gap.
@@ -41,7 +41,7 @@
 use crate::bundle::edge::BoxPair;
 use crate::bundle::fix::{all_hit_fix, all_miss_fix, BundleFixFormat, FixBundle};
 use crate::bundle::float::{all_hit_float, all_miss_float, FloatBundle};
-use crate::bundle::rebound::ScaledBundle;
+use crate::bundle::rebound::{float_hull, ScaledBundle};
 use crate::format::fixed::FixBox;
 use crate::format::float::FloatFormat;
 use crate::slab::float::FloatBox;
@@ -75,6 +75,8 @@ pub trait PairDatapath {
     /// A ray as the ray store holds it: its tiny bundle, and on the fixed datapath its direction
     /// exponent (for re-bounding).
     type Ray: Copy + Default + std::fmt::Debug + PartialEq + Send + Sync + 'static;
+    /// A re-bounded bundle as the processor reports it.
+    type Hull: Copy + Default + std::fmt::Debug + PartialEq + Eq + Send + Sync + 'static;
     /// A box in the datapath's format.
     type Box: Copy + Default + std::fmt::Debug + PartialEq + Send + Sync + 'static;
     /// The bundle test: `(all_hit, all_miss)`.
@@ -82,13 +84,14 @@ pub trait PairDatapath {
     /// The two-ray mode answer for one ray: it may hit the outer box.
     fn may_hit(&self, ray: &Self::Ray, outer: &Self::Box) -> bool;
     /// The re-bounded bundle gathered so far, `acc`, with the kept ray `ray` folded in; `None` on a
-    /// datapath whose processor does not re-bound (the float one).
-    fn gather(&self, acc: Option<ScaledBundle>, ray: &Self::Ray) -> Option<ScaledBundle>;
+    /// datapath whose processor does not re-bound.
+    fn gather(&self, acc: Option<Self::Hull>, ray: &Self::Ray) -> Option<Self::Hull>;
 }
 
 impl PairDatapath for BundleFixFormat {
     type Bundle = FixBundle;
     type Ray = ScaledBundle;
+    type Hull = ScaledBundle;
     type Box = FixBox;
     fn decide(&self, b: &FixBundle, boxes: &BoxPair<FixBox>) -> (bool, bool) {
         (
@@ -108,6 +111,7 @@ impl PairDatapath for BundleFixFormat {
 impl PairDatapath for FloatFormat {
     type Bundle = FloatBundle;
     type Ray = FloatBundle;
+    type Hull = FloatBundle;
     type Box = FloatBox;
     fn decide(&self, b: &FloatBundle, boxes: &BoxPair<FloatBox>) -> (bool, bool) {
         (
@@ -118,14 +122,17 @@ impl PairDatapath for FloatFormat {
     fn may_hit(&self, ray: &FloatBundle, outer: &FloatBox) -> bool {
         !all_miss_float(self, ray, outer)
     }
-    fn gather(&self, _: Option<ScaledBundle>, _: &FloatBundle) -> Option<ScaledBundle> {
-        None
+    /// [`float_hull`], the float rule of [`crate::bundle::rebound`].
+    fn gather(&self, acc: Option<FloatBundle>, ray: &FloatBundle) -> Option<FloatBundle> {
+        Some(acc.map_or(*ray, |a| float_hull(self, &a, ray)))
     }
 }
 
 /// The clock's inputs of a processor over datapath `P`.
 pub type StreamInOf<P> =
     StreamIn<<P as PairDatapath>::Bundle, <P as PairDatapath>::Box, <P as PairDatapath>::Ray>;
+/// The outputs of a processor over datapath `P`.
+pub type StreamOutOf<P> = StreamOut<<P as PairDatapath>::Hull>;
 /// A job of a processor over datapath `P`.
 pub type StreamJobOf<P> = StreamJob<<P as PairDatapath>::Bundle, <P as PairDatapath>::Box>;
 
@@ -153,9 +160,10 @@ pub struct StreamIn<B, X, R = B> {
     pub reset: bool,
 }
 
-/// The outputs of one clock (the result fields hold their value until the next `done`).
+/// The outputs of one clock (the result fields hold their value until the next `done`; `H`: a
+/// re-bounded bundle, [`PairDatapath::Hull`]).
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Default)]
-pub struct StreamOut {
+pub struct StreamOut<H = ScaledBundle> {
     pub ready: bool,
     pub done: bool,
     pub tag: u8,
@@ -164,9 +172,9 @@ pub struct StreamOut {
     pub split: bool,
     pub mask: u16,
     /// The re-bounded bundle of a split job's kept rays ([`PairDatapath::gather`] over the rays whose
-    /// `mask` bit is set, as they were read from the store); `None` for a decided job, a split one
-    /// that kept no ray, and on the float datapath.
-    pub rebound: Option<ScaledBundle>,
+    /// `mask` bit is set, as they were read from the store); `None` for a decided job and a split one
+    /// that kept no ray.
+    pub rebound: Option<H>,
 }
 
 /// What enters the pair in one clock, with its answer.
@@ -224,8 +232,8 @@ pub struct StreamModel<P: PairDatapath> {
     issue: Option<Issue<P::Ray, P::Box>>,
     acc: u16,
     /// The re-bounded bundle of the kept rays answered so far of the job being answered.
-    hull: Option<ScaledBundle>,
-    out: StreamOut,
+    hull: Option<P::Hull>,
+    out: StreamOut<P::Hull>,
     /// Clocks the pair's input was used, and clocks run.
     pub busy_clocks: u64,
     pub clocks: u64,
@@ -277,7 +285,7 @@ impl<P: PairDatapath> StreamModel<P> {
     }
 
     /// The outputs in this clock.
-    pub fn outputs(&self) -> StreamOut {
+    pub fn outputs(&self) -> StreamOut<P::Hull> {
         StreamOut {
             ready: self.ready(),
             ..self.out
@@ -426,6 +434,7 @@ mod tests {
     impl PairDatapath for Toy {
         type Bundle = (bool, bool);
         type Ray = (bool, bool);
+        type Hull = ();
         type Box = u8;
         fn decide(&self, b: &(bool, bool), _: &BoxPair<u8>) -> (bool, bool) {
             *b
@@ -433,7 +442,7 @@ mod tests {
         fn may_hit(&self, r: &(bool, bool), _: &u8) -> bool {
             r.0
         }
-        fn gather(&self, _: Option<ScaledBundle>, _: &(bool, bool)) -> Option<ScaledBundle> {
+        fn gather(&self, _: Option<()>, _: &(bool, bool)) -> Option<()> {
             None
         }
     }
@@ -452,7 +461,7 @@ mod tests {
     }
 
     /// Runs `inputs` then idles until quiet; returns per clock (ready before the clock, done after).
-    fn run(m: &mut StreamModel<Toy>, inputs: &[StreamIn<(bool, bool), u8>]) -> Vec<StreamOut> {
+    fn run(m: &mut StreamModel<Toy>, inputs: &[StreamIn<(bool, bool), u8>]) -> Vec<StreamOut<()>> {
         let mut outs = vec![];
         for k in 0..inputs.len() + 40 {
             m.step(inputs.get(k).unwrap_or(&StreamIn::default()));

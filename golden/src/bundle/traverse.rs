@@ -12,8 +12,10 @@
 //! to both children of an inner node, as one bundle again ([`Rebound`]): the original bundle, the smallest
 //! world bundle around the rays kept, quantised again, or the hull of the kept rays' stored tiny bundles
 //! ([`crate::bundle::rebound`], the rule a results processor can follow while the rays stream through the
-//! pair during a split, at no extra cycle; the fixed streaming processor `rtl::bundle::stream::BundleStream`
-//! does, bit for bit). Distances
+//! pair during a split, at no extra cycle; the streaming processors `rtl::bundle::stream::BundleStream`
+//! and `rtl::bundle::stream_float::BundleStreamFloat` do, bit for bit; on the float datapath the rays are
+//! stored on the scale of their original bundle, and the pair's two-ray answers are those of the stored
+//! rays). Distances
 //! are not shortened by hits (an "all hits" traversal), so the node visits do not depend on child order.
 //!
 //! Every answer is checked: "all hit" with a ray of the tested bundle that misses (every ray of the
@@ -32,9 +34,13 @@
 use crate::bundle::build::{Built, SplitMetric};
 use crate::bundle::check::slab_hit;
 use crate::bundle::edge::{decide_exact, Bundle};
+use crate::bundle::fix::bundle_dir_exp;
 use crate::bundle::fix::{decide_fix, decide_fix_quantised, BundleFixFormat};
-use crate::bundle::float::decide_float;
-use crate::bundle::rebound::{quantize_scaled, rebound_fix, ScaledBundle};
+use crate::bundle::float::{
+    all_hit_float, all_miss_float, decide_float, quantize_box_pair as float_box_pair,
+    quantize_bundle_at, FloatBundle,
+};
+use crate::bundle::rebound::{quantize_scaled, rebound_fix, rebound_float, ScaledBundle};
 use crate::bundle::split::split_cycles;
 use crate::error::Error;
 use crate::format::fixed::GridMap;
@@ -212,8 +218,9 @@ pub enum Rebound {
     Keep,
     /// The smallest world bundle around the rays kept ([`Bundle::around`]), quantised again.
     World,
-    /// The hull of the kept rays as the ray store holds them ([`crate::bundle::rebound::rebound_fix`]):
-    /// the rule of a results processor; the fixed datapath only.
+    /// The hull of the kept rays as the ray store holds them ([`crate::bundle::rebound::rebound_fix`],
+    /// [`crate::bundle::rebound::rebound_float`]): the rule of a results processor; the fixed and float
+    /// datapaths (the exact path has no stored rays).
     Stored,
 }
 
@@ -229,6 +236,13 @@ impl Rebound {
 
     /// Every rule, `Keep` first.
     pub const ALL: [Rebound; 3] = [Rebound::Keep, Rebound::World, Rebound::Stored];
+}
+
+/// A re-bounded bundle on a datapath's codes ([`Rebound::Stored`]).
+#[derive(Clone, Copy, Debug)]
+enum Stored {
+    Fix(ScaledBundle),
+    Float(FloatBundle),
 }
 
 fn mask_rays(rays: &[Ray], idx: &[usize], mask: u64) -> Vec<Ray> {
@@ -262,15 +276,23 @@ pub fn traverse_bundle(
         BundlePath::Fix(bf, map) => Some((bf, map)),
         _ => None,
     };
-    if opt.rebound == Rebound::Stored && fix.is_none() {
+    let stored_float = match path {
+        BundlePath::Float(f) if opt.rebound == Rebound::Stored => Some(f),
+        _ => None,
+    };
+    if opt.rebound == Rebound::Stored && fix.is_none() && stored_float.is_none() {
         return Err(Error::Io(format!(
-            "{}: stored-ray re-bounding is a rule of the fixed datapath",
+            "{}: stored-ray re-bounding is a rule of the fixed and float datapaths",
             path.name()
         )));
     }
+    // On the float datapath with stored rays: each ray on the scale of the original bundle, as the
+    // float processor's store holds it.
+    let root_j = bundle_dir_exp(&b.bundle);
+    let float_ray = |f: &FloatFormat, r: &Ray| quantize_bundle_at(f, &Bundle::of_ray(r)?, root_j);
     // Each entry: node, active rays, the world bundle (the metric's, and the pair's unless `stored`
     // holds the bundle on the datapath's codes).
-    let mut stack: Vec<(usize, u64, Bundle, Option<ScaledBundle>)> = vec![(0, all, b.bundle, None)];
+    let mut stack: Vec<(usize, u64, Bundle, Option<Stored>)> = vec![(0, all, b.bundle, None)];
     while let Some((node, active, bundle, stored)) = stack.pop() {
         let nd = &bvh.nodes[node];
         let bx = &nd.bounds;
@@ -301,8 +323,16 @@ pub fn traverse_bundle(
             // The rays' share of a split job's pair cycles (the bundle test's one is counted below).
             st.pair_cycles += u64::from(split_cycles(true, active) - split_cycles(false, active));
             let mut m = 0u64;
+            let outer = stored_float.map(|f| float_box_pair(f, bx)).transpose()?;
             for (k, &i) in b.rays.iter().enumerate() {
-                if active >> k & 1 == 1 && path.may_hit(&rays[i], bx)? {
+                if active >> k & 1 == 0 {
+                    continue;
+                }
+                let may_hit = match (stored_float, &outer) {
+                    (Some(f), Some(p)) => !all_miss_float(f, &float_ray(f, &rays[i])?, &p.outer),
+                    _ => path.may_hit(&rays[i], bx)?,
+                };
+                if may_hit {
                     m |= 1 << k;
                 }
             }
@@ -313,8 +343,17 @@ pub fn traverse_bundle(
             split(st)?
         } else {
             st.pair_cycles += u64::from(split_cycles(false, active));
-            let (all_hit, all_miss) = match (&stored, fix) {
-                (Some(h), Some((bf, map))) => decide_fix_quantised(bf, map, &h.q, bx)?,
+            let (all_hit, all_miss) = match (&stored, path) {
+                (Some(Stored::Fix(h)), BundlePath::Fix(bf, map)) => {
+                    decide_fix_quantised(bf, map, &h.q, bx)?
+                }
+                (Some(Stored::Float(h)), BundlePath::Float(f)) => {
+                    let p = float_box_pair(f, bx)?;
+                    (
+                        all_hit_float(f, h, &p.inner),
+                        all_miss_float(f, h, &p.outer),
+                    )
+                }
                 _ => path.decide(&bundle, bx)?,
             };
             if all_hit && all_miss {
@@ -351,13 +390,20 @@ pub fn traverse_bundle(
         if let NodeKind::Inner { left, right } = nd.kind {
             let (next, next_stored) = if opt.rebound != Rebound::Keep && mask != active {
                 let kept = mask_rays(rays, &b.rays, mask);
-                let hull = match (opt.rebound, fix) {
-                    (Rebound::Stored, Some((bf, map))) => {
+                let hull = match (opt.rebound, path) {
+                    (Rebound::Stored, BundlePath::Fix(bf, map)) => {
                         let tiny = kept
                             .iter()
                             .map(|r| quantize_scaled(bf, map, &Bundle::of_ray(r)?))
                             .collect::<Result<Vec<_>, Error>>()?;
-                        rebound_fix(bf, tiny)
+                        rebound_fix(bf, tiny).map(Stored::Fix)
+                    }
+                    (Rebound::Stored, BundlePath::Float(f)) => {
+                        let tiny = kept
+                            .iter()
+                            .map(|r| float_ray(f, r))
+                            .collect::<Result<Vec<_>, Error>>()?;
+                        rebound_float(f, tiny).map(Stored::Float)
                     }
                     _ => None,
                 };
@@ -491,11 +537,13 @@ mod tests {
         }
     }
 
-    /// Stored-ray re-bounding on room tiles, every answer checked by the traversal: with directions of
-    /// one scale exponent it is world re-bounding exactly; with directions of many lengths it still
-    /// never contradicts the exact tests (a looser t range may decide less). Other datapaths refuse it.
+    /// Stored-ray re-bounding on room tiles, every answer checked by the traversal: on the fixed datapath
+    /// with directions of one scale exponent it is world re-bounding exactly; with directions of many
+    /// lengths it still never contradicts the exact tests (a looser t range may decide less). On the
+    /// float datapath (rays on their bundle's scale) it is world re-bounding exactly in binary32, where
+    /// no value leaves the normal range, and checked in binary16. The exact path refuses it.
     #[test]
-    fn stored_ray_rebounding_is_checked_and_fixed_only() {
+    fn stored_ray_rebounding_is_checked_on_the_fixed_and_float_datapaths() {
         let (sc, bvh, rays) = setup();
         let built = tiles(&rays, 16, 12, 4).unwrap();
         let run = |rays: &[Ray], path: &BundlePath, rebound| {
@@ -537,8 +585,22 @@ mod tests {
             assert!(stored.decided > 0 && stored.tests > 0, "{stored:?}");
             assert_eq!(stored.rays, world.rays);
         }
+        for f in [FloatFormat::FP32, FloatFormat::FP16] {
+            let path = BundlePath::Float(f);
+            for rs in [&rays, &long_and_short] {
+                let stored = run(rs, &path, Rebound::Stored).unwrap();
+                let world = run(rs, &path, Rebound::World).unwrap();
+                assert!(
+                    stored.decided > 0 && stored.rays == world.rays,
+                    "{stored:?}"
+                );
+                if f == FloatFormat::FP32 {
+                    assert_eq!(stored, world, "{}", f.name());
+                }
+            }
+        }
         let e = run(&rays, &BundlePath::Exact, Rebound::Stored).unwrap_err();
-        assert!(e.to_string().contains("fixed datapath"), "{e}");
+        assert!(e.to_string().contains("fixed and float datapaths"), "{e}");
     }
 
     #[test]

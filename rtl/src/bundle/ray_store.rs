@@ -13,6 +13,7 @@
 //! `addr_b`.
 
 use rust_hdl::prelude::*;
+use rust_hdl::widgets::ramrom::ram::RAM;
 
 /// The two-bank ray store; see the module documentation.
 #[derive(LogicBlock, Default)]
@@ -126,6 +127,43 @@ impl<const G: usize, const D: usize, const T: usize, const A: usize> Logic
         self.rb_t.write_data.next = self.w_t.val();
         self.rb_t.read_address.next = self.addr_b.val();
         self.b_t.next = self.rb_t.read_data.val();
+    }
+}
+
+/// One more field of every stored ray in two banks, as [`RayStore`] holds its fields (written together
+/// at `waddr`, read at `addr_a` and `addr_b` with one clock of latency, read before write): what only
+/// re-bounding needs (a ray's `t_lo`, its direction exponent).
+#[derive(LogicBlock, Default)]
+pub struct TwinRam<const W: usize, const A: usize> {
+    pub clock: Signal<In, Clock>,
+    pub we: Signal<In, Bit>,
+    pub waddr: Signal<In, Bits<A>>,
+    pub w: Signal<In, Bits<W>>,
+    pub addr_a: Signal<In, Bits<A>>,
+    pub addr_b: Signal<In, Bits<A>>,
+    pub a: Signal<Out, Bits<W>>,
+    pub b: Signal<Out, Bits<W>>,
+    ra: RAM<Bits<W>, A>,
+    rb: RAM<Bits<W>, A>,
+}
+
+impl<const W: usize, const A: usize> Logic for TwinRam<W, A> {
+    #[hdl_gen]
+    fn update(&mut self) {
+        self.ra.read_clock.next = self.clock.val();
+        self.ra.write_clock.next = self.clock.val();
+        self.ra.write_enable.next = self.we.val();
+        self.ra.write_address.next = self.waddr.val();
+        self.ra.write_data.next = self.w.val();
+        self.ra.read_address.next = self.addr_a.val();
+        self.a.next = self.ra.read_data.val();
+        self.rb.read_clock.next = self.clock.val();
+        self.rb.write_clock.next = self.clock.val();
+        self.rb.write_enable.next = self.we.val();
+        self.rb.write_address.next = self.waddr.val();
+        self.rb.write_data.next = self.w.val();
+        self.rb.read_address.next = self.addr_b.val();
+        self.b.next = self.rb.read_data.val();
     }
 }
 

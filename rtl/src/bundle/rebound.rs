@@ -1,7 +1,15 @@
-//! Re-bounding in the fixed streaming processor ([`crate::bundle::stream::BundleStream`]): while a split
-//! job's rays stream through the pair, [`ReboundAcc`] gathers the hull of the rays the pair keeps and
-//! reports it with the job, bit for bit the rule of `golden::bundle::rebound` (the model:
-//! `golden::bundle::stream::StreamModel`, which folds each kept ray with `ScaledBundle::hull`).
+//! Re-bounding in the streaming processors ([`crate::bundle::stream::BundleStream`],
+//! [`crate::bundle::stream_float::BundleStreamFloat`]): while a split job's rays stream through the
+//! pair, [`ReboundAcc`] gathers the hull of the rays the pair keeps and reports it with the job, bit for
+//! bit the rule of `golden::bundle::rebound` (the model: `golden::bundle::stream::StreamModel`, which
+//! folds each kept ray with `ScaledBundle::hull` or `float_hull`).
+//!
+//! # On the float datapath
+//! The float rule needs no rescaling (the rays of a bundle are stored on one direction scale): it is a
+//! `min`/`max` of every field in the numeric order with `-0` below `+0`. [`OrderKeys`] turns each code
+//! into a key that compares as a two's-complement integer in that order, so the float processor uses
+//! [`ReboundAcc`] as it is, on keys, with every exponent 0: [`Hull2`] then shifts by 0 and is a signed
+//! `min`/`max`, and synthesis removes the shifters (the exponents are constant).
 //!
 //! A bundle here is a tiny bundle with its direction exponent `j` (a ray's, as the store holds it, or a
 //! hull's), its fields as arrays: `o` (origin codes `lo` x, y, z then `hi` x, y, z, `G` bits), `d`
@@ -12,9 +20,9 @@
 //! - [`Hull2`]: the hull of two bundles: the one with the larger `j` brought onto the other's scale, then
 //!   `min` of every `lo`, `max` of every `hi` (combinational);
 //! - [`ItemLine`]: a bundle delayed by a number of clocks; [`ItemSel`]: a choice of two bundles or zero;
-//! - [`ScaleStore`]: the part of each stored ray only re-bounding needs (`t_lo`, `j`), two banks as
-//!   [`crate::bundle::ray_store::RayStore`];
-//! - [`ReboundAcc`]: the gatherer.
+//! - [`ReboundAcc`]: the gatherer;
+//! - [`OrderKeys`]: float codes as signed keys, so that [`ReboundAcc`] gathers float bundles too (see
+//!   "On the float datapath").
 //!
 //! # Timing of [`ReboundAcc`] (`L` = the pair's latency, at least 2)
 //! The two rays that enter the pair in a clock (from the store's read ports) ride a line of `L - 1`
@@ -36,7 +44,6 @@
 use crate::cut::Line;
 pub use golden::bundle::rebound::J_BITS;
 use rust_hdl::prelude::*;
-use rust_hdl::widgets::ramrom::ram::RAM;
 
 /// Bits of a shift amount: the difference of two exponents of [`J_BITS`].
 pub const S_BITS: usize = J_BITS;
@@ -381,59 +388,57 @@ impl<const G: usize, const D: usize, const T: usize> Logic for ItemSel<G, D, T> 
     }
 }
 
-/// The ray store's re-bounding fields: each ray's `t_lo` and direction exponent `j`, in two banks
-/// written together and read at `addr_a` and `addr_b` (one clock of read latency, read before write), as
-/// [`crate::bundle::ray_store::RayStore`].
-#[derive(LogicBlock, Default)]
-pub struct ScaleStore<const T: usize, const A: usize> {
-    pub clock: Signal<In, Clock>,
-    pub we: Signal<In, Bit>,
-    pub waddr: Signal<In, Bits<A>>,
-    pub w_t_lo: Signal<In, Bits<T>>,
-    pub w_j: Signal<In, Bits<J_BITS>>,
-    pub addr_a: Signal<In, Bits<A>>,
-    pub addr_b: Signal<In, Bits<A>>,
-    pub a_t_lo: Signal<Out, Bits<T>>,
-    pub a_j: Signal<Out, Bits<J_BITS>>,
-    pub b_t_lo: Signal<Out, Bits<T>>,
-    pub b_j: Signal<Out, Bits<J_BITS>>,
-    ra_t: RAM<Bits<T>, A>,
-    ra_j: RAM<Bits<J_BITS>, A>,
-    rb_t: RAM<Bits<T>, A>,
-    rb_j: RAM<Bits<J_BITS>, A>,
+/// The order key of every field of a float bundle (`N`-bit codes; arrays as [`ReboundAcc`]'s, without
+/// `j`), combinational: the code with its magnitude bits inverted when its sign is set
+/// (`golden::bundle::rebound::float_order_key`). Keys compare as two's-complement integers in the
+/// numeric order of the codes, `-0` below `+0`, so the fixed datapath's signed `min` and `max` are the
+/// float hull's; the map is its own inverse, so the same block turns a hull of keys back into codes.
+#[derive(LogicBlock)]
+pub struct OrderKeys<const N: usize> {
+    pub x_o: [Signal<In, Bits<N>>; 6],
+    pub x_d: [Signal<In, Bits<N>>; 6],
+    pub x_t: [Signal<In, Bits<N>>; 2],
+    pub k_o: [Signal<Out, Bits<N>>; 6],
+    pub k_d: [Signal<Out, Bits<N>>; 6],
+    pub k_t: [Signal<Out, Bits<N>>; 2],
+    msb: Constant<Bits<N>>,
+    mag: Constant<Bits<N>>,
 }
 
-impl<const T: usize, const A: usize> Logic for ScaleStore<T, A> {
+impl<const N: usize> Default for OrderKeys<N> {
+    fn default() -> Self {
+        Self {
+            x_o: Default::default(),
+            x_d: Default::default(),
+            x_t: Default::default(),
+            k_o: Default::default(),
+            k_d: Default::default(),
+            k_t: Default::default(),
+            msb: Constant::new(bits(1 << (N - 1))),
+            mag: Constant::new(bits((1 << (N - 1)) - 1)),
+        }
+    }
+}
+
+impl<const N: usize> Logic for OrderKeys<N> {
     #[hdl_gen]
     fn update(&mut self) {
-        self.ra_t.read_clock.next = self.clock.val();
-        self.ra_t.write_clock.next = self.clock.val();
-        self.ra_t.write_enable.next = self.we.val();
-        self.ra_t.write_address.next = self.waddr.val();
-        self.ra_t.write_data.next = self.w_t_lo.val();
-        self.ra_t.read_address.next = self.addr_a.val();
-        self.a_t_lo.next = self.ra_t.read_data.val();
-        self.rb_t.read_clock.next = self.clock.val();
-        self.rb_t.write_clock.next = self.clock.val();
-        self.rb_t.write_enable.next = self.we.val();
-        self.rb_t.write_address.next = self.waddr.val();
-        self.rb_t.write_data.next = self.w_t_lo.val();
-        self.rb_t.read_address.next = self.addr_b.val();
-        self.b_t_lo.next = self.rb_t.read_data.val();
-        self.ra_j.read_clock.next = self.clock.val();
-        self.ra_j.write_clock.next = self.clock.val();
-        self.ra_j.write_enable.next = self.we.val();
-        self.ra_j.write_address.next = self.waddr.val();
-        self.ra_j.write_data.next = self.w_j.val();
-        self.ra_j.read_address.next = self.addr_a.val();
-        self.a_j.next = self.ra_j.read_data.val();
-        self.rb_j.read_clock.next = self.clock.val();
-        self.rb_j.write_clock.next = self.clock.val();
-        self.rb_j.write_enable.next = self.we.val();
-        self.rb_j.write_address.next = self.waddr.val();
-        self.rb_j.write_data.next = self.w_j.val();
-        self.rb_j.read_address.next = self.addr_b.val();
-        self.b_j.next = self.rb_j.read_data.val();
+        for i in 0..6 {
+            self.k_o[i].next = self.x_o[i].val();
+            if (self.x_o[i].val() & self.msb.val()).any() {
+                self.k_o[i].next = self.x_o[i].val() ^ self.mag.val();
+            }
+            self.k_d[i].next = self.x_d[i].val();
+            if (self.x_d[i].val() & self.msb.val()).any() {
+                self.k_d[i].next = self.x_d[i].val() ^ self.mag.val();
+            }
+        }
+        for i in 0..2 {
+            self.k_t[i].next = self.x_t[i].val();
+            if (self.x_t[i].val() & self.msb.val()).any() {
+                self.k_t[i].next = self.x_t[i].val() ^ self.mag.val();
+            }
+        }
     }
 }
 
@@ -795,6 +800,98 @@ mod tests {
             bf.name()
         );
         assert!(shifted > 10_000 && saturated > 100, "{shifted} {saturated}");
+    }
+
+    /// The float gatherer's hull (`OrderKeys` of both bundles, `Hull2` at one scale, `OrderKeys` back)
+    /// equals `golden::bundle::rebound::float_hull` on binary16 codes weighted to the edges: both
+    /// zeros, infinities, NaN codes, subnormals, the largest finite values, either sign.
+    #[test]
+    fn float_keys_and_hull2_are_the_model_float_hull() {
+        use golden::bundle::float::FloatBundle;
+        use golden::bundle::rebound::float_hull;
+        use golden::format::float::FloatFormat;
+        const N: usize = 16;
+        let f = FloatFormat::FP16;
+        let mut keys = OrderKeys::<N>::default();
+        keys.connect_all();
+        let mut hull = Hull2::<N, N, N>::default();
+        hull.connect_all();
+        let special = [
+            0x0000, 0x8000, 0x7c00, 0xfc00, 0x7e01, 0x0001, 0x8001, 0x7bff, 0xfbff, 0x3c00,
+        ];
+        let mut rng = Pcg64::seed_from_u64(3);
+        let mut pick = |rng: &mut Pcg64| -> u32 {
+            if rng.gen_ratio(1, 2) {
+                special[rng.gen_range(0..special.len())]
+            } else {
+                rng.gen_range(0..1u32 << N)
+            }
+        };
+        let mut random = |rng: &mut Pcg64| FloatBundle {
+            o_lo: std::array::from_fn(|_| pick(rng)),
+            o_hi: std::array::from_fn(|_| pick(rng)),
+            d_lo: std::array::from_fn(|_| pick(rng)),
+            d_hi: std::array::from_fn(|_| pick(rng)),
+            t_lo: pick(rng),
+            t_hi: pick(rng),
+        };
+        // A bundle's fields in the gatherer's order (o: lo x y z, hi x y z; d likewise; t: lo, hi).
+        let fields = |b: &FloatBundle| -> ([u32; 6], [u32; 6], [u32; 2]) {
+            (
+                [
+                    b.o_lo[0], b.o_lo[1], b.o_lo[2], b.o_hi[0], b.o_hi[1], b.o_hi[2],
+                ],
+                [
+                    b.d_lo[0], b.d_lo[1], b.d_lo[2], b.d_hi[0], b.d_hi[1], b.d_hi[2],
+                ],
+                [b.t_lo, b.t_hi],
+            )
+        };
+        let mut map = |keys: &mut OrderKeys<N>, v: ([u32; 6], [u32; 6], [u32; 2])| {
+            for i in 0..6 {
+                keys.x_o[i].next = bits::<N>(v.0[i] as u64);
+                keys.x_d[i].next = bits::<N>(v.1[i] as u64);
+            }
+            for i in 0..2 {
+                keys.x_t[i].next = bits::<N>(v.2[i] as u64);
+            }
+            assert!(simulate(keys, 50), "the keys settle");
+            let w = |x: Bits<N>| x.to_u64() as u32;
+            (
+                std::array::from_fn(|i| w(keys.k_o[i].val())),
+                std::array::from_fn(|i| w(keys.k_d[i].val())),
+                std::array::from_fn(|i| w(keys.k_t[i].val())),
+            )
+        };
+        let mut ties = 0;
+        for k in 0..20_000 {
+            let (x, y) = (random(&mut rng), random(&mut rng));
+            let (kx, ky) = (map(&mut keys, fields(&x)), map(&mut keys, fields(&y)));
+            for i in 0..6 {
+                hull.x_o[i].next = bits::<N>(kx.0[i] as u64);
+                hull.x_d[i].next = bits::<N>(kx.1[i] as u64);
+                hull.y_o[i].next = bits::<N>(ky.0[i] as u64);
+                hull.y_d[i].next = bits::<N>(ky.1[i] as u64);
+            }
+            for i in 0..2 {
+                hull.x_t[i].next = bits::<N>(kx.2[i] as u64);
+                hull.y_t[i].next = bits::<N>(ky.2[i] as u64);
+            }
+            hull.x_j.next = bits::<J_BITS>(0);
+            hull.y_j.next = bits::<J_BITS>(0);
+            assert!(simulate(&mut hull, 50), "the hull settles");
+            let w = |x: Bits<N>| x.to_u64() as u32;
+            let kh: ([u32; 6], [u32; 6], [u32; 2]) = (
+                std::array::from_fn(|i| w(hull.h_o[i].val())),
+                std::array::from_fn(|i| w(hull.h_d[i].val())),
+                std::array::from_fn(|i| w(hull.h_t[i].val())),
+            );
+            let got = map(&mut keys, kh);
+            let want = float_hull(&f, &x, &y);
+            assert_eq!(got, fields(&want), "case {k}: {x:x?} hull {y:x?}");
+            ties += (x.o_lo[0] ^ y.o_lo[0] == 0x8000 && x.o_lo[0] & 0x7fff == 0) as usize;
+        }
+        assert!(ties > 50, "only {ties} cases of -0 against +0");
     }
 
     /// `Hull2` equals `ScaledBundle::hull` (the model's rule) on raw codes weighted to every edge, for

@@ -61,15 +61,15 @@
 //!
 //! # Structure
 //! [`crate::bundle::stream_ctl::StreamCtl`] (the control: delay lines, split queue, engine, accumulator, result registers; shared
-//! with the float processor) beside the pair and the ray store ([`RayStore`], and [`ScaleStore`] for
-//! each ray's `t_lo` and `j`), and the gatherer [`ReboundAcc`], which takes the rays as they enter the
+//! with the float processor) beside the pair and the ray store ([`RayStore`], and a [`TwinRam`] each for
+//! the rays' `t_lo` and `j`), and the gatherer [`ReboundAcc`], which takes the rays as they enter the
 //! pair and the control's reading of each answer; this block only wires the job port, the store's banks
 //! and the control's choice into the pair.
 
 use crate::bundle::edge_fix::BUNDLE_TEST_CUTS;
 use crate::bundle::pair_fix::{bundle_fix_latency, BundleFix, BUNDLE_FIX_DEPTHS};
-use crate::bundle::ray_store::{ray_job_word, RayStore};
-use crate::bundle::rebound::{ReboundAcc, ScaleStore, J_BITS};
+use crate::bundle::ray_store::{ray_job_word, RayStore, TwinRam};
+use crate::bundle::rebound::{ReboundAcc, J_BITS};
 pub use crate::bundle::stream_ctl::STREAM_ADDR_BITS;
 use crate::bundle::stream_ctl::{StreamCtl8, SET_BITS};
 use crate::export::verilog_named;
@@ -77,8 +77,8 @@ use crate::slab::fix::{code, sext};
 use golden::bundle::fix::{BundleFixFormat, FixBundle};
 use golden::bundle::rebound::ScaledBundle;
 use golden::bundle::stream::{
-    PairDatapath, StreamIn, StreamInOf, StreamJob, StreamOut, STREAM_RAYS, STREAM_SETS,
-    STREAM_TAG_BITS,
+    PairDatapath, StreamIn, StreamInOf, StreamJob, StreamOut, StreamOutOf, STREAM_RAYS,
+    STREAM_SETS, STREAM_TAG_BITS,
 };
 use golden::format::fixed::FixBox;
 use rust_hdl::prelude::*;
@@ -144,7 +144,8 @@ pub struct BundleStream<
     // the pair, the ray store (bank A: ray A, bank B: ray B), the control and the gatherer
     pair: BundleFix<G, V, D, T, CUTS>,
     store: RayStore<G, D, T, STREAM_ADDR_BITS>,
-    scale: ScaleStore<T, STREAM_ADDR_BITS>,
+    store_t_lo: TwinRam<T, STREAM_ADDR_BITS>,
+    store_j: TwinRam<J_BITS, STREAM_ADDR_BITS>,
     ctl: StreamCtl8<G>,
     rebound: ReboundAcc<G, D, T>,
 }
@@ -200,7 +201,8 @@ impl<const G: usize, const V: usize, const D: usize, const T: usize, const CUTS:
             rb_j: Default::default(),
             pair: BundleFix::new(bf),
             store: Default::default(),
-            scale: Default::default(),
+            store_t_lo: Default::default(),
+            store_j: Default::default(),
             ctl: StreamCtl8::new(Self::PAIR_LATENCY),
             rebound: ReboundAcc::new(Self::PAIR_LATENCY),
         }
@@ -230,13 +232,18 @@ impl<const G: usize, const V: usize, const D: usize, const T: usize, const CUTS:
         }
         self.store.addr_a.next = self.ctl.addr_a.val();
         self.store.addr_b.next = self.ctl.addr_b.val();
-        self.scale.clock.next = self.clock.val();
-        self.scale.we.next = self.ray_we.val();
-        self.scale.waddr.next = self.ray_addr.val();
-        self.scale.w_t_lo.next = self.ray_t_lo.val();
-        self.scale.w_j.next = self.ray_j.val();
-        self.scale.addr_a.next = self.ctl.addr_a.val();
-        self.scale.addr_b.next = self.ctl.addr_b.val();
+        self.store_t_lo.clock.next = self.clock.val();
+        self.store_t_lo.we.next = self.ray_we.val();
+        self.store_t_lo.waddr.next = self.ray_addr.val();
+        self.store_t_lo.w.next = self.ray_t_lo.val();
+        self.store_t_lo.addr_a.next = self.ctl.addr_a.val();
+        self.store_t_lo.addr_b.next = self.ctl.addr_b.val();
+        self.store_j.clock.next = self.clock.val();
+        self.store_j.we.next = self.ray_we.val();
+        self.store_j.waddr.next = self.ray_addr.val();
+        self.store_j.w.next = self.ray_j.val();
+        self.store_j.addr_a.next = self.ctl.addr_a.val();
+        self.store_j.addr_b.next = self.ctl.addr_b.val();
 
         // The gatherer: the rays as they enter the pair, and the control's reading of its answer.
         self.rebound.clock.next = self.clock.val();
@@ -251,12 +258,12 @@ impl<const G: usize, const V: usize, const D: usize, const T: usize, const CUTS:
             self.rebound.b_d[i].next = self.store.b_d_lo[i].val();
             self.rebound.b_d[i + 3].next = self.store.b_d_hi[i].val();
         }
-        self.rebound.a_t[0].next = self.scale.a_t_lo.val();
+        self.rebound.a_t[0].next = self.store_t_lo.a.val();
         self.rebound.a_t[1].next = self.store.a_t.val();
-        self.rebound.a_j.next = self.scale.a_j.val();
-        self.rebound.b_t[0].next = self.scale.b_t_lo.val();
+        self.rebound.a_j.next = self.store_j.a.val();
+        self.rebound.b_t[0].next = self.store_t_lo.b.val();
         self.rebound.b_t[1].next = self.store.b_t.val();
-        self.rebound.b_j.next = self.scale.b_j.val();
+        self.rebound.b_j.next = self.store_j.b.val();
         self.rebound.rays_back.next = self.ctl.ans_rays.val();
         self.rebound.keep_a.next = self.ctl.ans_keep_a.val();
         self.rebound.keep_b.next = self.ctl.ans_keep_b.val();
@@ -392,17 +399,20 @@ pub trait BundleStreamIo: Block {
     /// Drives one clock's inputs (data ports of an absent write or start are driven to zero).
     fn drive(&mut self, input: &StreamInOf<Self::Dp>);
     /// Reads the outputs.
-    fn outputs(&self) -> StreamOut;
+    fn outputs(&self) -> StreamOutOf<Self::Dp>;
     /// The outputs from the values of the output ports (`word`: a port's value by its Verilog name, such
     /// as `rb_d_lo_1`); `None` when a port is missing.
-    fn decode_out(dp: &Self::Dp, word: &dyn Fn(&str) -> Option<u64>) -> Option<StreamOut>;
+    fn decode_out(
+        dp: &Self::Dp,
+        word: &dyn Fn(&str) -> Option<u64>,
+    ) -> Option<StreamOutOf<Self::Dp>>;
     /// The value of input port `port` (a Verilog name such as `ray_d_lo_1`) in one clock.
     fn in_word(dp: &Self::Dp, port: &str, input: &StreamInOf<Self::Dp>) -> Option<u64>;
 }
 
 /// The result ports every processor has (`ready` .. `mask`) from their values by name; `rebound` is
 /// `None`.
-pub fn decode_common_out(word: &dyn Fn(&str) -> Option<u64>) -> Option<StreamOut> {
+pub fn decode_common_out<H>(word: &dyn Fn(&str) -> Option<u64>) -> Option<StreamOut<H>> {
     Some(StreamOut {
         ready: word("ready")? != 0,
         done: word("done")? != 0,

@@ -8,7 +8,17 @@
 //!
 //! Clock for clock `golden::bundle::stream::StreamModel` over the float datapath
 //! (`golden::format::float::FloatFormat` as `PairDatapath`); what a job computes is the float pair's
-//! bundle test and, for an undecided bundle, its two-ray answers ("may hit") on the job's active rays.
+//! bundle test and, for an undecided bundle, its two-ray answers ("may hit") on the job's active rays,
+//! and the re-bounded bundle of the rays kept (`golden::bundle::rebound::rebound_float`).
+//!
+//! # Re-bounding
+//! As the fixed processor, with the float rule of `golden::bundle::rebound`: the componentwise `min` of
+//! the kept rays' `lo` fields and `max` of their `hi` fields, nothing rescaled (the rays of a bundle are
+//! stored on one direction scale, where a float loses nothing). The gatherer is the fixed processor's
+//! [`ReboundAcc`] on order keys ([`OrderKeys`]: a float code with its magnitude bits inverted when
+//! negative compares as a two's-complement integer, `-0` below `+0`) with every exponent 0, where its
+//! [`crate::bundle::rebound::Hull2`] rescales nothing and is a signed `min`/`max`; the hull's keys map
+//! back to codes on the `rb_*` ports.
 //!
 //! # Parameters
 //! `E`, `M`, `N = 1 + E + M`, `CUTS`, as [`BundleFloat`]; presets [`crate::BundleStreamFp32`],
@@ -18,13 +28,16 @@
 //! # Inputs
 //! As `BundleStream`'s: `clock`, `rst`; the ray store write port `ray_we`, `ray_addr` (`[5:4]` set,
 //! `[3:0]` ray), `ray_o_lo`, `ray_o_hi`, `ray_d_lo`, `ray_d_hi` (arrays over x, y, z), `ray_t` (the ray
-//! quantised as a tiny float bundle, `golden::bundle::float::quantize_bundle` of a one-ray bundle: its
-//! `t_hi`); the job port `start`, `o_lo`, `o_hi`, `d_lo`, `d_hi`, `t_lo`, `t_hi`, `in_lo`, `in_hi`,
+//! quantised as a tiny float bundle on its bundle's direction scale,
+//! `golden::bundle::float::quantize_bundle_at` of a one-ray bundle: its `t_hi`), `ray_t_lo` (its `t_lo`,
+//! for re-bounding); the job port `start`, `o_lo`, `o_hi`, `d_lo`, `d_hi`, `t_lo`, `t_hi`, `in_lo`, `in_hi`,
 //! `out_lo`, `out_hi` (the bundle and box pair as the float pair takes them), `active` (16 bits),
 //! `job_set` (2 bits), `tag` (8 bits).
 //!
 //! # Outputs
-//! `ready`, `done`, `done_tag`, `all_hit`, `all_miss`, `split`, `mask`, as `BundleStream`'s.
+//! `ready`, `done`, `done_tag`, `all_hit`, `all_miss`, `split`, `mask`, as `BundleStream`'s; `rb_valid`
+//! and the re-bounded bundle `rb_o_lo`, `rb_o_hi`, `rb_d_lo`, `rb_d_hi`, `rb_t_lo`, `rb_t_hi` (float
+//! codes; no exponent), all zero when `rb_valid` is low.
 //!
 //! # Sequencing (`L` = [`bundle_float_latency`]`(CUTS)`: 9, or 13 for `_p13`)
 //! A decided job reports `L + 1` clocks after its start; a split job of `k` pair clocks no earlier than
@@ -33,7 +46,8 @@
 //! 16, which a stream of decided jobs never reaches, and the queue cannot overflow.
 
 use crate::bundle::pair_float::{bundle_float_latency, BundleFloat, BUNDLE_FLOAT_DEPTHS};
-use crate::bundle::ray_store::{ray_job_word_of, RayStore};
+use crate::bundle::ray_store::{ray_job_word_of, RayStore, TwinRam};
+use crate::bundle::rebound::{OrderKeys, ReboundAcc, J_BITS};
 use crate::bundle::stream::{
     decode_common_out, store_addr, stream_in_word_with, BundleStreamIo, STREAM_ADDR_BITS,
 };
@@ -65,6 +79,7 @@ pub struct BundleStreamFloat<const E: usize, const M: usize, const N: usize, con
     pub ray_d_lo: [Signal<In, Bits<N>>; 3],
     pub ray_d_hi: [Signal<In, Bits<N>>; 3],
     pub ray_t: Signal<In, Bits<N>>,
+    pub ray_t_lo: Signal<In, Bits<N>>,
     // job port
     pub start: Signal<In, Bit>,
     pub o_lo: [Signal<In, Bits<N>>; 3],
@@ -88,10 +103,26 @@ pub struct BundleStreamFloat<const E: usize, const M: usize, const N: usize, con
     pub all_miss: Signal<Out, Bit>,
     pub split: Signal<Out, Bit>,
     pub mask: Signal<Out, Bits<STREAM_RAYS>>,
-    // the pair, the ray store (bank A: ray A, bank B: ray B) and the control
+    // the re-bounded bundle
+    pub rb_valid: Signal<Out, Bit>,
+    pub rb_o_lo: [Signal<Out, Bits<N>>; 3],
+    pub rb_o_hi: [Signal<Out, Bits<N>>; 3],
+    pub rb_d_lo: [Signal<Out, Bits<N>>; 3],
+    pub rb_d_hi: [Signal<Out, Bits<N>>; 3],
+    pub rb_t_lo: Signal<Out, Bits<N>>,
+    pub rb_t_hi: Signal<Out, Bits<N>>,
+    // the pair, the ray store (bank A: ray A, bank B: ray B), the control and the gatherer
     pair: BundleFloat<E, M, N, CUTS>,
     store: RayStore<N, N, N, STREAM_ADDR_BITS>,
+    store_t_lo: TwinRam<N, STREAM_ADDR_BITS>,
     ctl: StreamCtl16<N>,
+    /// The gatherer on order keys (one direction scale: every exponent 0), the keys of rays A and B
+    /// as they enter the pair, and the hull's codes from its keys.
+    rebound: ReboundAcc<N, N, N>,
+    key_a: OrderKeys<N>,
+    key_b: OrderKeys<N>,
+    code_rb: OrderKeys<N>,
+    zero_j: Constant<Bits<J_BITS>>,
 }
 
 impl<const E: usize, const M: usize, const N: usize, const CUTS: usize>
@@ -109,6 +140,7 @@ impl<const E: usize, const M: usize, const N: usize, const CUTS: usize>
             ray_d_lo: Default::default(),
             ray_d_hi: Default::default(),
             ray_t: Default::default(),
+            ray_t_lo: Default::default(),
             start: Default::default(),
             o_lo: Default::default(),
             o_hi: Default::default(),
@@ -130,9 +162,22 @@ impl<const E: usize, const M: usize, const N: usize, const CUTS: usize>
             all_miss: Default::default(),
             split: Default::default(),
             mask: Default::default(),
+            rb_valid: Default::default(),
+            rb_o_lo: Default::default(),
+            rb_o_hi: Default::default(),
+            rb_d_lo: Default::default(),
+            rb_d_hi: Default::default(),
+            rb_t_lo: Default::default(),
+            rb_t_hi: Default::default(),
             pair: BundleFloat::new(),
             store: Default::default(),
+            store_t_lo: Default::default(),
             ctl: StreamCtl16::new(bundle_float_latency(CUTS)),
+            rebound: ReboundAcc::new(bundle_float_latency(CUTS)),
+            key_a: Default::default(),
+            key_b: Default::default(),
+            code_rb: Default::default(),
+            zero_j: Constant::new(bits(0)),
         }
     }
 
@@ -173,6 +218,50 @@ impl<const E: usize, const M: usize, const N: usize, const CUTS: usize> Logic
         }
         self.store.addr_a.next = self.ctl.addr_a.val();
         self.store.addr_b.next = self.ctl.addr_b.val();
+        self.store_t_lo.clock.next = self.clock.val();
+        self.store_t_lo.we.next = self.ray_we.val();
+        self.store_t_lo.waddr.next = self.ray_addr.val();
+        self.store_t_lo.w.next = self.ray_t_lo.val();
+        self.store_t_lo.addr_a.next = self.ctl.addr_a.val();
+        self.store_t_lo.addr_b.next = self.ctl.addr_b.val();
+
+        // The gatherer: the rays' keys as they enter the pair, and the control's reading of its answer.
+        for i in 0..3 {
+            self.key_a.x_o[i].next = self.store.a_o_lo[i].val();
+            self.key_a.x_o[i + 3].next = self.store.a_o_hi[i].val();
+            self.key_a.x_d[i].next = self.store.a_d_lo[i].val();
+            self.key_a.x_d[i + 3].next = self.store.a_d_hi[i].val();
+            self.key_b.x_o[i].next = self.store.b_o_lo[i].val();
+            self.key_b.x_o[i + 3].next = self.store.b_o_hi[i].val();
+            self.key_b.x_d[i].next = self.store.b_d_lo[i].val();
+            self.key_b.x_d[i + 3].next = self.store.b_d_hi[i].val();
+        }
+        self.key_a.x_t[0].next = self.store_t_lo.a.val();
+        self.key_a.x_t[1].next = self.store.a_t.val();
+        self.key_b.x_t[0].next = self.store_t_lo.b.val();
+        self.key_b.x_t[1].next = self.store.b_t.val();
+        self.rebound.clock.next = self.clock.val();
+        self.rebound.rst.next = self.rst.val();
+        for i in 0..6 {
+            self.rebound.a_o[i].next = self.key_a.k_o[i].val();
+            self.rebound.a_d[i].next = self.key_a.k_d[i].val();
+            self.rebound.b_o[i].next = self.key_b.k_o[i].val();
+            self.rebound.b_d[i].next = self.key_b.k_d[i].val();
+            self.code_rb.x_o[i].next = self.rebound.rb_o[i].val();
+            self.code_rb.x_d[i].next = self.rebound.rb_d[i].val();
+        }
+        for i in 0..2 {
+            self.rebound.a_t[i].next = self.key_a.k_t[i].val();
+            self.rebound.b_t[i].next = self.key_b.k_t[i].val();
+            self.code_rb.x_t[i].next = self.rebound.rb_t[i].val();
+        }
+        self.rebound.a_j.next = self.zero_j.val();
+        self.rebound.b_j.next = self.zero_j.val();
+        self.rebound.rays_back.next = self.ctl.ans_rays.val();
+        self.rebound.keep_a.next = self.ctl.ans_keep_a.val();
+        self.rebound.keep_b.next = self.ctl.ans_keep_b.val();
+        self.rebound.last_back.next = self.ctl.ans_last.val();
+        self.rebound.bundle_done.next = self.ctl.ans_done.val();
 
         // The control: the job port's control fields and the pair's answer.
         self.ctl.start.next = self.start.val();
@@ -231,6 +320,15 @@ impl<const E: usize, const M: usize, const N: usize, const CUTS: usize> Logic
         self.all_miss.next = self.ctl.all_miss.val();
         self.split.next = self.ctl.split.val();
         self.mask.next = self.ctl.mask.val();
+        self.rb_valid.next = self.rebound.rb_valid.val();
+        for i in 0..3 {
+            self.rb_o_lo[i].next = self.code_rb.k_o[i].val();
+            self.rb_o_hi[i].next = self.code_rb.k_o[i + 3].val();
+            self.rb_d_lo[i].next = self.code_rb.k_d[i].val();
+            self.rb_d_hi[i].next = self.code_rb.k_d[i + 3].val();
+        }
+        self.rb_t_lo.next = self.code_rb.k_t[0].val();
+        self.rb_t_hi.next = self.code_rb.k_t[1].val();
     }
 }
 
@@ -268,9 +366,53 @@ pub fn bundle_stream_float_verilog() -> Vec<(String, String, usize)> {
     ]
 }
 
+/// The re-bounded bundle on a float processor's `rb_*` ports (`word(base, axis)` a port's value): the
+/// bundle when `rb_valid` is high, `None` when it is low and every field is zero (what the block drives
+/// then). Fields that are not zero while `rb_valid` is low decode as a bundle with every field
+/// `u32::MAX` (wider than a 16-bit code, and a NaN in binary32, which no hull of quantised rays holds),
+/// so that a comparison with the model catches a wrong `rb_valid` in either direction. The outer
+/// `None`: a port is missing.
+pub fn decode_rebound_float(
+    word: impl Fn(&str, usize) -> Option<u64>,
+) -> Option<Option<FloatBundle>> {
+    let arr = |base: &str| -> Option<[u32; 3]> {
+        Some([
+            word(base, 0)? as u32,
+            word(base, 1)? as u32,
+            word(base, 2)? as u32,
+        ])
+    };
+    let fb = FloatBundle {
+        o_lo: arr("rb_o_lo")?,
+        o_hi: arr("rb_o_hi")?,
+        d_lo: arr("rb_d_lo")?,
+        d_hi: arr("rb_d_hi")?,
+        t_lo: word("rb_t_lo", 0)? as u32,
+        t_hi: word("rb_t_hi", 0)? as u32,
+    };
+    let valid = word("rb_valid", 0)? != 0;
+    Some(if valid {
+        Some(fb)
+    } else if fb == FloatBundle::default() {
+        None
+    } else {
+        Some(FloatBundle {
+            o_lo: [u32::MAX; 3],
+            o_hi: [u32::MAX; 3],
+            d_lo: [u32::MAX; 3],
+            d_hi: [u32::MAX; 3],
+            t_lo: u32::MAX,
+            t_hi: u32::MAX,
+        })
+    })
+}
+
 /// The value of input port `port` in one clock, for a float processor.
 pub fn stream_float_in_word(port: &str, input: &FloatStreamIn) -> Option<u64> {
     stream_in_word_with(port, input, |base, i, r, j| {
+        if base == "ray_t_lo" {
+            return Some(r.t_lo as u64);
+        }
         let (inner, outer) = (&j.boxes.inner, &j.boxes.outer);
         let w = |x: u32| x as u64;
         let boxes = [&inner.lo, &inner.hi, &outer.lo, &outer.hi];
@@ -329,11 +471,12 @@ impl<const E: usize, const M: usize, const N: usize, const CUTS: usize> BundleSt
             self.out_hi[a].next = w(p.outer.hi[a]);
         }
         self.ray_t.next = w(r.t_hi);
+        self.ray_t_lo.next = w(r.t_lo);
         self.t_lo.next = w(b.t_lo);
         self.t_hi.next = w(b.t_hi);
     }
 
-    fn outputs(&self) -> StreamOut {
+    fn outputs(&self) -> StreamOut<FloatBundle> {
         StreamOut {
             ready: self.ready.val(),
             done: self.done.val(),
@@ -342,12 +485,34 @@ impl<const E: usize, const M: usize, const N: usize, const CUTS: usize> BundleSt
             all_miss: self.all_miss.val(),
             split: self.split.val(),
             mask: self.mask.val().to_u64() as u16,
-            rebound: None,
+            rebound: decode_rebound_float(|base, i| {
+                Some(match base {
+                    "rb_valid" => self.rb_valid.val() as u64,
+                    "rb_o_lo" => self.rb_o_lo[i].val().to_u64(),
+                    "rb_o_hi" => self.rb_o_hi[i].val().to_u64(),
+                    "rb_d_lo" => self.rb_d_lo[i].val().to_u64(),
+                    "rb_d_hi" => self.rb_d_hi[i].val().to_u64(),
+                    "rb_t_lo" => self.rb_t_lo.val().to_u64(),
+                    "rb_t_hi" => self.rb_t_hi.val().to_u64(),
+                    _ => return None,
+                })
+            })
+            .expect("every re-bounding port"),
         }
     }
 
-    fn decode_out(_: &FloatFormat, word: &dyn Fn(&str) -> Option<u64>) -> Option<StreamOut> {
-        decode_common_out(word)
+    fn decode_out(
+        _: &FloatFormat,
+        word: &dyn Fn(&str) -> Option<u64>,
+    ) -> Option<StreamOut<FloatBundle>> {
+        let rebound = decode_rebound_float(|base, i| match base {
+            "rb_valid" | "rb_t_lo" | "rb_t_hi" => word(base),
+            _ => word(&format!("{base}_{i}")),
+        })?;
+        Some(StreamOut {
+            rebound,
+            ..decode_common_out(word)?
+        })
     }
 
     fn in_word(_: &FloatFormat, port: &str, input: &FloatStreamIn) -> Option<u64> {

@@ -18,11 +18,12 @@ use crate::rtl_sim::Clocked;
 use crate::verilator::Harness;
 use golden::bundle::edge::BoxPair;
 use golden::bundle::edge::Bundle;
-use golden::bundle::fix::BundleFixFormat;
+use golden::bundle::fix::{bundle_dir_exp, BundleFixFormat};
+use golden::bundle::float::quantize_bundle_at;
 use golden::bundle::gen::BundleGen;
 use golden::bundle::rebound::{quantize_scaled, ScaledBundle, J_BITS};
 use golden::bundle::stream::{
-    PairDatapath, StreamInOf, StreamJob, StreamModel, StreamOut, STREAM_RAYS, STREAM_SETS,
+    PairDatapath, StreamInOf, StreamJob, StreamModel, StreamOutOf, STREAM_RAYS, STREAM_SETS,
 };
 use golden::format::fixed::FixFormat;
 use golden::format::float::FloatFormat;
@@ -45,7 +46,7 @@ pub type StreamCase<P> = (
 pub trait StreamCases: PairDatapath + Copy + std::fmt::Debug + Send + Sync + 'static {
     /// The format's name, for messages.
     fn label(&self) -> String;
-    /// Whether the processor re-bounds (reports [`StreamOut::rebound`]).
+    /// Whether the processor re-bounds (reports `StreamOut::rebound`).
     const REBOUNDS: bool;
     /// A case from `gen` (its next case, or with `one_ray` a single ray on a grid) in the format, or
     /// `None` when the bundle, the box or a ray does not fit it.
@@ -90,11 +91,13 @@ impl StreamCases for BundleFixFormat {
 }
 
 impl StreamCases for FloatFormat {
-    const REBOUNDS: bool = false;
+    const REBOUNDS: bool = true;
     fn label(&self) -> String {
         self.name()
     }
     /// One-ray cases are on the b8 campaign grid (integer coordinates, exact in every float format).
+    /// About two cases in three store their rays on the bundle's direction scale (what float
+    /// re-bounding needs to be tight), the others each ray on its own.
     fn case(&self, gen: &mut BundleGen, one_ray: bool) -> Option<StreamCase<Self>> {
         let c = if one_ray {
             gen.grid_one_ray(&campaign_map(FixFormat::b8()))
@@ -102,10 +105,20 @@ impl StreamCases for FloatFormat {
             gen.next_case()
         };
         let (b, p) = quantised(self, &c.bundle, &c.bounds)?;
+        let j = bundle_dir_exp(&c.bundle);
+        // A pseudo-random third of the cases, from the case itself (the stimulus stays a function of the
+        // generator's seed).
+        let own = c.bundle.t_hi.to_bits() % 3 == 0;
         let rays = c
             .rays
             .iter()
-            .map(|r| ray_bundle(self, r).ok())
+            .map(|r| {
+                if own {
+                    ray_bundle(self, r).ok()
+                } else {
+                    quantize_bundle_at(self, &Bundle::of_ray(r).ok()?, j).ok()
+                }
+            })
             .collect::<Option<Vec<_>>>()?;
         Some((b, p, rays))
     }
@@ -143,12 +156,12 @@ impl<S: BundleStreamIo> StreamRtl<S> {
     }
 
     /// The outputs in this clock.
-    pub fn outputs(&self) -> StreamOut {
+    pub fn outputs(&self) -> StreamOutOf<S::Dp> {
         self.0.uut.outputs()
     }
 
     /// One clock: drive the inputs, clock, and return the outputs of the next clock.
-    pub fn step(&mut self, input: &StreamInOf<S::Dp>) -> StreamOut {
+    pub fn step(&mut self, input: &StreamInOf<S::Dp>) -> StreamOutOf<S::Dp> {
         self.0.uut.drive(input);
         self.0.clock(S::set_clock);
         self.0.uut.outputs()
@@ -329,12 +342,12 @@ impl<P: PairDatapath> StreamChecker<P> {
     }
 
     /// The model's outputs in this clock.
-    pub fn expected(&self) -> StreamOut {
+    pub fn expected(&self) -> StreamOutOf<P> {
         self.model.outputs()
     }
 
     /// One clock of `input`; `got` is the block's outputs after it. Errors name the clock and both.
-    pub fn check(&mut self, input: &StreamInOf<P>, got: &StreamOut) -> Result<(), String> {
+    pub fn check(&mut self, input: &StreamInOf<P>, got: &StreamOutOf<P>) -> Result<(), String> {
         let s = &mut self.stats;
         let ready = self.model.ready();
         if let Some(j) = input.start.as_ref().filter(|_| !input.reset) {

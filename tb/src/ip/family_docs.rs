@@ -945,7 +945,7 @@ struct StreamPairText {
     params: Vec<(String, String, String)>,
     store: Vec<(String, String)>,
     job: Vec<(String, String)>,
-    /// The re-bounding result ports and rule (the fixed processor's).
+    /// The re-bounding result ports and rule.
     rebound: Option<(Vec<(String, String)>, String)>,
     /// The format's words (grid or float layout) and the encoding of jobs and rays.
     format: String,
@@ -1000,9 +1000,10 @@ pub fn bundle_stream_float_doc(f: &FloatFormat, cuts: usize) -> FamilyDoc {
         store: vec![
             port("ray_o_lo", word("stored ray's origin, `RD(o)`")),
             port("ray_o_hi", word("stored ray's origin, `RU(o)`")),
-            port("ray_d_lo", word("stored ray's direction, `RD(d * 2^j)` with the ray's own `j`")),
+            port("ray_d_lo", word("stored ray's direction, `RD(d * 2^j)` on its bundle's scale `j` (see Encoding)")),
             port("ray_d_hi", word("stored ray's direction, `RU(d * 2^j)`")),
             port("ray_t", word("stored ray's `t_max`, `RU(t_max * 2^-j)`; +inf allowed")),
+            port("ray_t_lo", word("stored ray's `t_max`, `RD(t_max * 2^-j)` (for re-bounding only)")),
         ],
         job: vec![
             port("o_lo", word("job bundle's origin box, lower corner `RD(o_min)`")),
@@ -1016,14 +1017,19 @@ pub fn bundle_stream_float_doc(f: &FloatFormat, cuts: usize) -> FamilyDoc {
             port("out_lo", word("node box, outer (AnyHit and the rays) lower corner `RD(min)`")),
             port("out_hi", word("node box, outer (AnyHit and the rays) upper corner `RU(max)`")),
         ],
-        rebound: None,
+        rebound: Some(rebound_float_doc()),
         format: float_layout_text(f),
         enc: format!(
             "**Encoding**: the job's bundle and box are encoded exactly as for the pair \
 `{pair}` (its datasheet has the conditions and the direction scale `j`: **t is not in \
-world units**, `t_world = t_port * 2^j`). Each stored ray (`t_min = 0`) is the bundle of that one ray, \
-with its own `j`: `ray_o_lo/hi = RD/RU(o_a)`, `ray_d_lo/hi = RD/RU(d_a * 2^j)`, \
-`ray_t = RU(t_max * 2^-j)`; its `RD` of `t_max` is not stored. The rays of a job need not be the \
+world units**, `t_world = t_port * 2^j`). Each stored ray (`t_min = 0`) is the bundle of that one ray \
+on the direction scale `j` of the bundle it belongs to (the bundle a traversal starts with, whose \
+largest direction magnitude `2^j` brings into `[1, 2)`): `ray_o_lo/hi = RD/RU(o_a)`, \
+`ray_d_lo/hi = RD/RU(d_a * 2^j)`, `ray_t_lo/ray_t = RD/RU(t_max * 2^-j)`. The pair's answers hold \
+for any `j` (a ray is the same for `d * 2^j` and `t * 2^-j`), so a ray on its own scale is also \
+answered correctly, but the re-bounded bundle is tight only when the kept rays share one scale (a \
+float keeps its precision under a power-of-two scale, so nothing is lost unless a value leaves the \
+format's normal range, where it is still rounded outward). The rays of a job need not be the \
 bundle's own rays, but only then does the report describe them.\n\n"
         ),
         l: rtl::bundle::pair_float::bundle_float_latency(cuts),
@@ -1057,6 +1063,33 @@ next node (with `active = mask`). It is on the same grid and t scale as the job'
 kept ray had the job's `j`. A decided job, or a split one that kept no ray, reports `rb_valid = 0` \
 and zeros. When every ray stays (`mask = active`) the caller may keep the job's own bundle instead \
 (the traversal model in the repository does).\n"
+        .to_string();
+    (ports, rule)
+}
+
+/// The re-bounding ports and rule of the float streaming processor.
+fn rebound_float_doc() -> (Vec<(String, String)>, String) {
+    let ports = vec![
+        port("rb_valid", "report: 1 when the job was split and kept a ray; the `rb_*` ports then hold the re-bounded bundle of its kept rays, else every `rb_*` port is 0"),
+        port("rb_o_lo", "re-bounded bundle's origin box, lower corner"),
+        port("rb_o_hi", "re-bounded bundle's origin box, upper corner"),
+        port("rb_d_lo", "re-bounded bundle's direction box, lower corner, on the stored rays' scale"),
+        port("rb_d_hi", "re-bounded bundle's direction box, upper corner"),
+        port("rb_t_lo", "re-bounded bundle's smallest `t_max`"),
+        port("rb_t_hi", "re-bounded bundle's largest `t_max`"),
+    ];
+    let rule = "6. **Re-bounding**: while a split job's rays go through the pair, the block gathers the \
+bundle around the rays it keeps (mask bit set), from the rays as stored (`ray_*`, `ray_t_lo`), and \
+reports it with the job on `rb_*`, valid with `done` and held as the other report ports. The rule \
+(`golden::bundle::rebound` in the repository): `rb_*_lo` is the minimum and `rb_*_hi` the maximum of \
+every field over the kept rays, in the numeric order with `-0` below `+0` (a NaN code, which no \
+quantisation yields, orders beyond the infinity of its sign). Nothing is rescaled or rounded, so on \
+rays stored on one scale the result is exactly the bundle around the kept rays rounded outward on that \
+scale; on rays of different scales it still contains every kept ray's tiny bundle, so the pair's \
+answers on it hold for those rays. Feed it back as the job bundle of the next node (with \
+`active = mask`). A decided job, or a split one that kept no ray, reports `rb_valid = 0` and zeros. \
+When every ray stays (`mask = active`) the caller may keep the job's own bundle instead (the \
+traversal model in the repository does).\n"
         .to_string();
     (ports, rule)
 }
