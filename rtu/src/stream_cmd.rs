@@ -1,5 +1,6 @@
 //! `rtu bundle-stream`: scene job streams through the streaming results processor's RTL
-//! (`rtl::bundle::stream::BundleStream`, rust-hdl simulation, every clock checked against the clock model
+//! (`rtl::bundle::stream::BundleStream`, or `rtl::bundle::stream_float::BundleStreamFloat` for a float
+//! format; rust-hdl simulation, every clock checked against the clock model
 //! and every mask against the traversal model): per scene and ray set, the clocks the job trees take
 //! closed loop, the pair-input utilisation against the model's busy-pair count, clocks per job, and the
 //! decided jobs alone as one stream (bundle tests per clock). The streams and the replay are
@@ -8,12 +9,15 @@
 use crate::list;
 use golden::bundle::fix::BundleFixFormat;
 use golden::format::fixed::FixFormat;
+use golden::format::float::FloatFormat;
 use indicatif::{ProgressBar, ProgressStyle};
 use rtl::bundle::stream::BundleStreamIo;
 use std::fmt::Write as _;
 use std::path::Path;
 use tb::bundle::stream::StreamRtl;
-use tb::bundle::stream_scene::{run_decided, run_trees, scene_streams, JobTrees, StreamRun};
+use tb::bundle::stream_scene::{
+    run_decided, run_trees, scene_streams, JobTrees, SceneDatapath, StreamRun,
+};
 
 /// Arguments of `rtu bundle-stream`.
 #[derive(clap::Args, Debug)]
@@ -32,7 +36,7 @@ pub struct Args {
     /// Builder of the bounce and shadow bundles, `rays:dir_spread` (at most 16 rays).
     #[arg(long, default_value = "16:0.2")]
     builder: String,
-    /// Fixed preset of the processor: b8, b12 or b16.
+    /// Format of the processor: a fixed preset (b8, b12, b16) or a float one (fp32, bf16, fp16).
     #[arg(long, default_value = "b12")]
     format: String,
     /// Seed of the scenes and the secondary rays.
@@ -49,22 +53,32 @@ pub const CSV_HEADER: &str = "scene,rays,bundling,format,rebound,bundles,jobs,de
 
 /// The closed-loop and the decided-only runs of `trees`, on a thread with a big stack (the processor's
 /// block is large).
-fn replay<S: BundleStreamIo<Dp = BundleFixFormat>>(
-    bf: &BundleFixFormat,
-    trees: &JobTrees,
+fn replay<S: BundleStreamIo>(
+    dp: &S::Dp,
+    trees: &JobTrees<S::Dp>,
     pb: &ProgressBar,
 ) -> Result<(StreamRun, StreamRun), String> {
-    let (bf, trees, pb) = (*bf, trees.clone(), pb.clone());
+    let (dp, trees, pb) = (*dp, trees.clone(), pb.clone());
     tb::plane::float::with_big_stack(move || {
-        let r = run_trees(&bf, &trees, &mut StreamRtl::<S>::new(&bf), || pb.inc(1))?;
-        let d = run_decided(&bf, &trees, &mut StreamRtl::<S>::new(&bf))?;
+        let r = run_trees(&dp, &trees, &mut StreamRtl::<S>::new(&dp), || pb.inc(1))?;
+        let d = run_decided(&dp, &trees, &mut StreamRtl::<S>::new(&dp))?;
         Ok((r, d))
     })
 }
 
 /// Runs the measurement; returns the markdown table, writes `bundle_stream.csv` and `.md` under `out`.
 pub fn run(a: &Args, out: &Path) -> Result<String, String> {
-    let names = list(&a.scenes, |s| Ok(s.to_string()))?;
+    if let Ok(f) = FloatFormat::parse(&a.format) {
+        return match f {
+            FloatFormat::FP32 => measure(a, &f, out, replay::<rtl::BundleStreamFp32>),
+            FloatFormat::BF16 => measure(a, &f, out, replay::<rtl::BundleStreamBf16>),
+            FloatFormat::FP16 => measure(a, &f, out, replay::<rtl::BundleStreamFp16>),
+            _ => Err(format!(
+                "--format {}: the float processor is built in fp32, bf16 and fp16",
+                a.format
+            )),
+        };
+    }
     let fmt = FixFormat::parse(&a.format).map_err(|e| format!("--format {}: {e}", a.format))?;
     let bf = BundleFixFormat::over(fmt).map_err(|e| e.to_string())?;
     let preset = BundleFixFormat::presets()
@@ -72,10 +86,25 @@ pub fn run(a: &Args, out: &Path) -> Result<String, String> {
         .position(|p| *p == bf)
         .ok_or_else(|| {
             format!(
-                "--format {}: the processor is built over b8, b12 and b16",
+                "--format {}: the processor is built over b8, b12 and b16 (and fp32, bf16, fp16)",
                 a.format
             )
         })?;
+    match preset {
+        0 => measure(a, &bf, out, replay::<rtl::BundleStreamB8>),
+        1 => measure(a, &bf, out, replay::<rtl::BundleStreamB12>),
+        _ => measure(a, &bf, out, replay::<rtl::BundleStreamB16>),
+    }
+}
+
+/// [`run`] on the processor over `dp`, whose job trees `replay` runs.
+fn measure<P: SceneDatapath>(
+    a: &Args,
+    dp: &P,
+    out: &Path,
+    replay: impl Fn(&P, &JobTrees<P>, &ProgressBar) -> Result<(StreamRun, StreamRun), String>,
+) -> Result<String, String> {
+    let names = list(&a.scenes, |s| Ok(s.to_string()))?;
     let (n, ds) = a
         .builder
         .split_once(':')
@@ -115,7 +144,7 @@ pub fn run(a: &Args, out: &Path) -> Result<String, String> {
                 (a.width, a.height),
                 a.tile,
                 (rays, spread),
-                &bf,
+                dp,
                 rb,
             )
             .map_err(|e| format!("{name}: {e}"))?;
@@ -131,20 +160,24 @@ pub fn run(a: &Args, out: &Path) -> Result<String, String> {
                     .expect("template"),
             );
             pb.set_message(format!("{name} {set} {bundling} {rule}"));
-            let (r, d) = match preset {
-                0 => replay::<rtl::BundleStreamB8>(&bf, trees, &pb),
-                1 => replay::<rtl::BundleStreamB12>(&bf, trees, &pb),
-                _ => replay::<rtl::BundleStreamB16>(&bf, trees, &pb),
-            }
-            .map_err(|e| format!("{name} {set} {bundling}: {e}"))?;
+            let (r, d) =
+                replay(dp, trees, &pb).map_err(|e| format!("{name} {set} {bundling}: {e}"))?;
             if pb.is_hidden() {
                 eprintln!("{} done", pb.message());
             }
             pb.finish_and_clear();
             let dt = d.jobs as f64 / d.clocks.max(1) as f64;
+            // The one-job processor exists on the fixed datapath only.
+            let (one_csv, one_md) = match trees.one_job_clocks {
+                Some(c) => {
+                    let x = c as f64 / r.clocks.max(1) as f64;
+                    (format!("{c},{x:.3}"), format!("{c} ({x:.2}x)"))
+                }
+                None => (",".to_string(), "-".to_string()),
+            };
             let _ = writeln!(
                 csv,
-                "{name},{set},{bundling},{},{rule},{},{},{},{},{},{},{:.4},{:.4},{},{},{:.4},{},{:.3}",
+                "{name},{set},{bundling},{},{rule},{},{},{},{},{},{},{:.4},{:.4},{},{},{:.4},{one_csv}",
                 a.format,
                 r.bundles,
                 r.jobs,
@@ -157,12 +190,10 @@ pub fn run(a: &Args, out: &Path) -> Result<String, String> {
                 d.jobs,
                 d.clocks,
                 dt,
-                trees.one_job_clocks,
-                trees.one_job_clocks as f64 / r.clocks.max(1) as f64
             );
             let _ = writeln!(
                 table,
-                "| {name} | {set} | {bundling} | {rule} | {} | {} | {} | {} | {} | {:.3} | {:.2} | {:.3} | {} ({:.2}x) |",
+                "| {name} | {set} | {bundling} | {rule} | {} | {} | {} | {} | {} | {:.3} | {:.2} | {:.3} | {one_md} |",
                 r.bundles,
                 r.jobs,
                 r.decided,
@@ -171,8 +202,6 @@ pub fn run(a: &Args, out: &Path) -> Result<String, String> {
                 r.utilisation(),
                 r.clocks_per_job(),
                 dt,
-                trees.one_job_clocks,
-                trees.one_job_clocks as f64 / r.clocks.max(1) as f64
             );
         }
     }

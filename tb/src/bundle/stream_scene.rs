@@ -1,79 +1,172 @@
-//! Scene job streams through the streaming results processor: every bundle's traversal recorded as a
-//! tree of jobs (bundle, node box pair, active rays, the model's mask) by the fixed model
-//! (`golden::bundle::split::split_fix` on the quantised bundle, box pair and rays, as
+//! Scene job streams through the streaming results processors: every bundle's traversal recorded as a
+//! tree of jobs (bundle, node box pair, active rays, the model's mask) by the model of the processor's
+//! datapath (`golden::bundle::split::split_with` on the quantised bundle, box pair and rays, as
 //! `golden::bundle::traverse` runs it, without early splits (the RTL does not make them), and with or
 //! without re-bounding: a job that drops rays hands its children the bundle the block re-bounds around
 //! the rays it keeps, `Rebound::Stored`), then replayed closed-loop through the block: a job is started once its parent's
 //! result has come back, up to four bundles at once (one per ray set, the next bundle's rays written
 //! while the others run), and every result is checked against the recorded mask and re-bounded bundle
-//! and every clock against the clock-by-clock model ([`StreamChecker`]).
+//! and every clock against the clock-by-clock model ([`StreamChecker`]). The fixed datapath
+//! (`BundleStream`) and the float one (`BundleStreamFloat`) differ only in how a scene is quantised for
+//! them ([`SceneDatapath`]).
 //!
 //! What it measures: clocks, and the clocks the pair's input was used (which equal the model's busy-pair
 //! count, `BundleStats::pair_cycles`), so the pair-input utilisation is the model's busy-pair figure
 //! over the RTL's clocks.
 
-use super::stream::{StreamChecker, StreamRtl};
+use super::stream::{StreamCases, StreamChecker, StreamRtl};
+use glam::DVec3;
 use golden::bundle::build::Built;
-use golden::bundle::edge::Bundle;
-use golden::bundle::fix::{quantize_box_pair, quantize_bundle, BundleFixFormat, FixBundle};
-use golden::bundle::rebound::{j_fits, quantize_scaled, rebound_fix, ScaledBundle, J_BITS};
-use golden::bundle::split::split_fix;
-use golden::bundle::stream::{StreamJob, STREAM_RAYS, STREAM_SETS};
+use golden::bundle::edge::{BoxPair, Bundle};
+use golden::bundle::fix::{bundle_dir_exp, BundleFixFormat};
+use golden::bundle::rebound::{j_fits, quantize_scaled, ScaledBundle, J_BITS};
+use golden::bundle::split::split_with;
+use golden::bundle::stream::{
+    PairDatapath, StreamInOf, StreamJob, StreamJobOf, STREAM_RAYS, STREAM_SETS,
+};
 use golden::format::fixed::GridMap;
-use golden::geom::Ray;
+use golden::format::float::FloatFormat;
+use golden::geom::{Aabb, Ray};
 use golden::scene::bvh::{Bvh, NodeKind};
-use rtl::bundle::stream::{BundleStreamIo, FixStreamIn, FixStreamJob};
+use rtl::bundle::stream::BundleStreamIo;
+
+/// How a scene's bundles, node boxes and rays are quantised for a processor's datapath.
+pub trait SceneDatapath: StreamCases {
+    /// What quantisation needs of the scene: the grid over it (fixed), nothing (float).
+    type Ctx: Clone;
+    /// The context over a scene whose grid bounds are `lo`, `hi`.
+    fn scene_ctx(&self, lo: DVec3, hi: DVec3) -> Result<Self::Ctx, String>;
+    /// A node box, both ways.
+    fn boxes(&self, ctx: &Self::Ctx, b: &Aabb) -> Result<BoxPair<Self::Box>, String>;
+    /// A bundle as the job port takes it.
+    fn job_bundle(&self, ctx: &Self::Ctx, b: &Bundle) -> Result<Self::Bundle, String>;
+    /// Ray `r` of the bundle `root` as the ray store holds it: on its own direction scale with its
+    /// exponent (fixed), on the scale of `root` (float; see `golden::bundle::rebound`).
+    fn store_ray(&self, ctx: &Self::Ctx, root: &Bundle, r: &Ray) -> Result<Self::Ray, String>;
+    /// A re-bounded bundle as the job port takes it.
+    fn hull_bundle(h: &Self::Hull) -> Self::Bundle;
+    /// Whether a one-job processor (`rtl::bundle::split::BundleSplit`) exists on this datapath.
+    const ONE_JOB: bool;
+}
+
+impl SceneDatapath for BundleFixFormat {
+    type Ctx = GridMap;
+    fn scene_ctx(&self, lo: DVec3, hi: DVec3) -> Result<GridMap, String> {
+        GridMap::for_bounds(self.base, lo, hi).map_err(|e| e.to_string())
+    }
+    fn boxes(&self, map: &GridMap, b: &Aabb) -> Result<BoxPair<Self::Box>, String> {
+        golden::bundle::fix::quantize_box_pair(map, b)
+            .map_err(|e| format!("a node box does not fit {}: {e}", self.name()))
+    }
+    fn job_bundle(&self, map: &GridMap, b: &Bundle) -> Result<Self::Bundle, String> {
+        golden::bundle::fix::quantize_bundle(self, map, b).map_err(|e| e.to_string())
+    }
+    fn store_ray(&self, map: &GridMap, _: &Bundle, r: &Ray) -> Result<ScaledBundle, String> {
+        let r = Bundle::of_ray(r)
+            .and_then(|r| quantize_scaled(self, map, &r))
+            .map_err(|e| e.to_string())?;
+        if j_fits(r.j) {
+            Ok(r)
+        } else {
+            Err(format!(
+                "direction exponent {} does not fit the {J_BITS}-bit ray_j port (a direction too \
+                 short or too long)",
+                r.j
+            ))
+        }
+    }
+    fn hull_bundle(h: &ScaledBundle) -> Self::Bundle {
+        h.q
+    }
+    const ONE_JOB: bool = true;
+}
+
+impl SceneDatapath for FloatFormat {
+    type Ctx = ();
+    fn scene_ctx(&self, _: DVec3, _: DVec3) -> Result<(), String> {
+        Ok(())
+    }
+    fn boxes(&self, _: &(), b: &Aabb) -> Result<BoxPair<Self::Box>, String> {
+        golden::bundle::float::quantize_box_pair(self, b)
+            .map_err(|e| format!("a node box does not fit {}: {e}", self.name()))
+    }
+    fn job_bundle(&self, _: &(), b: &Bundle) -> Result<Self::Bundle, String> {
+        golden::bundle::float::quantize_bundle(self, b).map_err(|e| e.to_string())
+    }
+    fn store_ray(&self, _: &(), root: &Bundle, r: &Ray) -> Result<Self::Ray, String> {
+        Bundle::of_ray(r)
+            .and_then(|r| golden::bundle::float::quantize_bundle_at(self, &r, bundle_dir_exp(root)))
+            .map_err(|e| e.to_string())
+    }
+    fn hull_bundle(h: &Self::Hull) -> Self::Bundle {
+        *h
+    }
+    const ONE_JOB: bool = false;
+}
 
 /// One job of a recorded traversal.
 #[derive(Clone, Debug)]
-pub struct TreeJob {
+pub struct TreeJob<P: PairDatapath> {
     /// Index of its bundle in [`JobTrees::bundles`].
     pub bundle: usize,
     /// The job (its `set` and `tag` are chosen when it is started).
-    pub job: FixStreamJob,
+    pub job: StreamJobOf<P>,
     /// The model's result: the rays that go on.
     pub mask: u16,
     /// Whether the pair decided the bundle.
     pub decided: bool,
-    /// The re-bounded bundle the block reports with it: `golden::bundle::rebound::rebound_fix` of the
-    /// rays kept by a split job (`None` for a decided job or one that kept none).
-    pub rebound: Option<ScaledBundle>,
+    /// The re-bounded bundle the block reports with it: `golden::bundle::rebound::rebound_fix` or
+    /// `rebound_float` of the rays kept by a split job (`None` for a decided job or one that kept none).
+    pub rebound: Option<P::Hull>,
     /// The jobs released by its result (the children's, when `mask` is not empty).
     pub children: Vec<usize>,
 }
 
 /// Recorded traversals of a set of bundles.
-#[derive(Clone, Debug, Default)]
-pub struct JobTrees {
-    /// Per bundle: its quantised rays (with their direction exponents) and its root job.
-    pub bundles: Vec<(Vec<ScaledBundle>, usize)>,
-    pub jobs: Vec<TreeJob>,
+#[derive(Clone, Debug)]
+pub struct JobTrees<P: PairDatapath> {
+    /// Per bundle: its rays as the store holds them and its root job.
+    pub bundles: Vec<(Vec<P::Ray>, usize)>,
+    pub jobs: Vec<TreeJob<P>>,
     /// The model's busy-pair count: `1 + ceil(|active| / 2)` per split job, 1 per decided one.
     pub pair_cycles: u64,
     /// Clocks the one-job processor (`rtl::bundle::split::BundleSplit`) takes for the same jobs back to
-    /// back: `rtl::bundle::split::split_clocks` of each, summed.
-    pub one_job_clocks: u64,
+    /// back: `rtl::bundle::split::split_clocks` of each, summed; `None` on a datapath without one.
+    pub one_job_clocks: Option<u64>,
+}
+
+impl<P: PairDatapath> Default for JobTrees<P> {
+    fn default() -> Self {
+        JobTrees {
+            bundles: vec![],
+            jobs: vec![],
+            pair_cycles: 0,
+            one_job_clocks: None,
+        }
+    }
 }
 
 /// Records the traversal of every bundle of `built` (at most [`STREAM_RAYS`] rays each) on `bvh` with
-/// the fixed datapath `bf` on grid `map`; with `rebound`, a job that drops rays passes the bundle the
+/// the datapath `dp` (quantised with `ctx`); with `rebound`, a job that drops rays passes the bundle the
 /// block re-bounds around the rays it keeps to its children (`golden::bundle::traverse`'s
 /// `Rebound::Stored`), else its own bundle. Errors name the bundle and what does not fit.
-pub fn job_trees(
-    bf: &BundleFixFormat,
-    map: &GridMap,
+pub fn job_trees<P: SceneDatapath>(
+    dp: &P,
+    ctx: &P::Ctx,
     bvh: &Bvh,
     rays: &[Ray],
     built: &[Built],
     rebound: bool,
-) -> Result<JobTrees, String> {
-    let mut t = JobTrees::default();
+) -> Result<JobTrees<P>, String> {
+    let mut t = JobTrees::<P> {
+        one_job_clocks: P::ONE_JOB.then_some(0),
+        ..Default::default()
+    };
     let boxes: Vec<_> = bvh
         .nodes
         .iter()
-        .map(|n| quantize_box_pair(map, &n.bounds))
-        .collect::<Result<_, _>>()
-        .map_err(|e| format!("a node box does not fit {}: {e}", bf.name()))?;
+        .map(|n| dp.boxes(ctx, &n.bounds))
+        .collect::<Result<_, _>>()?;
     for (k, b) in built.iter().enumerate() {
         let n = b.rays.len();
         if n == 0 || n > STREAM_RAYS {
@@ -81,26 +174,17 @@ pub fn job_trees(
                 "bundle {k}: {n} rays; the ray store holds 1 to {STREAM_RAYS} a bundle"
             ));
         }
-        let fb = quantize_bundle(bf, map, &b.bundle).map_err(|e| format!("bundle {k}: {e}"))?;
-        let sr: Vec<ScaledBundle> = b
+        let fb = dp
+            .job_bundle(ctx, &b.bundle)
+            .map_err(|e| format!("bundle {k}: {e}"))?;
+        let sr: Vec<P::Ray> = b
             .rays
             .iter()
             .map(|&i| {
-                let r = Bundle::of_ray(&rays[i])
-                    .and_then(|r| quantize_scaled(bf, map, &r))
-                    .map_err(|e| format!("bundle {k}, ray {i}: {e}"))?;
-                if j_fits(r.j) {
-                    Ok(r)
-                } else {
-                    Err(format!(
-                        "bundle {k}, ray {i}: direction exponent {} does not fit the {J_BITS}-bit \
-                         ray_j port (a direction too short or too long)",
-                        r.j
-                    ))
-                }
+                dp.store_ray(ctx, &b.bundle, &rays[i])
+                    .map_err(|e| format!("bundle {k}, ray {i}: {e}"))
             })
             .collect::<Result<_, String>>()?;
-        let qr: Vec<FixBundle> = sr.iter().map(|r| r.q).collect();
         let root = t.jobs.len();
         t.bundles.push((sr.clone(), root));
         // (node, active, the job that releases it, the bundle)
@@ -113,13 +197,21 @@ pub fn job_trees(
                 set: 0,
                 tag: 0,
             };
-            let r = split_fix(bf, &fb, &boxes[node], &qr, active as u64);
+            let bx = &boxes[node];
+            let r = split_with(
+                || dp.decide(&fb, bx),
+                |i| dp.may_hit(&sr[i], &bx.outer),
+                active as u64,
+            );
             t.pair_cycles += r.pair_cycles as u64;
-            t.one_job_clocks += rtl::bundle::split::split_clocks(&r) as u64;
+            if let Some(c) = t.one_job_clocks.as_mut() {
+                *c += rtl::bundle::split::split_clocks(&r) as u64;
+            }
             let id = t.jobs.len();
-            let kept = (0..n).filter(|i| r.mask >> i & 1 == 1);
             let hull = if r.split {
-                rebound_fix(bf, kept.map(|i| sr[i]))
+                (0..n)
+                    .filter(|i| r.mask >> i & 1 == 1)
+                    .fold(None, |acc, i| dp.gather(acc, &sr[i]))
             } else {
                 None
             };
@@ -137,7 +229,7 @@ pub fn job_trees(
             if r.mask != 0 {
                 if let NodeKind::Inner { left, right } = bvh.nodes[node].kind {
                     let next = match hull {
-                        Some(h) if rebound && r.mask as u16 != active => h.q,
+                        Some(h) if rebound && r.mask as u16 != active => P::hull_bundle(&h),
                         _ => fb,
                     };
                     todo.push((right, r.mask as u16, Some(id), next));
@@ -181,24 +273,35 @@ impl StreamRun {
 
 /// Per ray set: the bundle it holds, its rays still to write, its jobs released and not yet started
 /// (last released first), and its jobs started and not yet reported.
-#[derive(Default)]
-struct SetState {
+struct SetState<R> {
     bundle: Option<usize>,
-    writes: Vec<(u8, ScaledBundle)>,
+    writes: Vec<(u8, R)>,
     ready: Vec<usize>,
     in_flight: usize,
 }
 
+impl<R> Default for SetState<R> {
+    fn default() -> Self {
+        SetState {
+            bundle: None,
+            writes: vec![],
+            ready: vec![],
+            in_flight: 0,
+        }
+    }
+}
+
 /// Replays `trees` closed-loop through `dut` (see the module doc), `progress` called once per bundle
 /// finished. Errors on any difference from the model or from a recorded mask.
-pub fn run_trees<S: BundleStreamIo<Dp = BundleFixFormat>>(
-    bf: &BundleFixFormat,
-    trees: &JobTrees,
+pub fn run_trees<S: BundleStreamIo>(
+    dp: &S::Dp,
+    trees: &JobTrees<S::Dp>,
     dut: &mut StreamRtl<S>,
     mut progress: impl FnMut(),
 ) -> Result<StreamRun, String> {
-    let mut ck = StreamChecker::of::<S>(bf);
-    let mut sets: Vec<SetState> = (0..STREAM_SETS).map(|_| SetState::default()).collect();
+    let mut ck = StreamChecker::of::<S>(dp);
+    let mut sets: Vec<SetState<<S::Dp as PairDatapath>::Ray>> =
+        (0..STREAM_SETS).map(|_| SetState::default()).collect();
     let mut next_bundle = 0;
     let mut tags: Vec<Option<usize>> = vec![None; 256];
     let mut next_tag = 0u8;
@@ -224,7 +327,7 @@ pub fn run_trees<S: BundleStreamIo<Dp = BundleFixFormat>>(
                 next_bundle += 1;
             }
         }
-        let mut input = FixStreamIn::default();
+        let mut input = StreamInOf::<S::Dp>::default();
         // One write a clock, to the loading set of the oldest bundle; its root is released with its
         // last ray (the contract allows a start in that clock).
         if let Some((k, s)) = sets
@@ -309,13 +412,13 @@ pub fn run_trees<S: BundleStreamIo<Dp = BundleFixFormat>>(
 
 /// Every decided job of `trees` as one independent stream (each job's rays loaded first, jobs started
 /// whenever `ready`): bundle tests per clock when nothing waits on a result.
-pub fn run_decided<S: BundleStreamIo<Dp = BundleFixFormat>>(
-    bf: &BundleFixFormat,
-    trees: &JobTrees,
+pub fn run_decided<S: BundleStreamIo>(
+    dp: &S::Dp,
+    trees: &JobTrees<S::Dp>,
     dut: &mut StreamRtl<S>,
 ) -> Result<StreamRun, String> {
-    let mut ck = StreamChecker::of::<S>(bf);
-    let jobs: Vec<&TreeJob> = trees.jobs.iter().filter(|j| j.decided).collect();
+    let mut ck = StreamChecker::of::<S>(dp);
+    let jobs: Vec<&TreeJob<S::Dp>> = trees.jobs.iter().filter(|j| j.decided).collect();
     let mut run = StreamRun {
         jobs: jobs.len() as u64,
         decided: jobs.len() as u64,
@@ -324,7 +427,7 @@ pub fn run_decided<S: BundleStreamIo<Dp = BundleFixFormat>>(
     };
     let (mut next, mut ready, mut done) = (0, true, 0);
     while done < jobs.len() {
-        let mut input = FixStreamIn::default();
+        let mut input = StreamInOf::<S::Dp>::default();
         if ready && next < jobs.len() {
             input.start = Some(StreamJob {
                 tag: next as u8,
@@ -348,17 +451,18 @@ pub fn run_decided<S: BundleStreamIo<Dp = BundleFixFormat>>(
 /// The job streams of one scene: `(ray set, bundling, trees)` for the primary rays in `tile x tile`
 /// tiles of a `w x h` image and the bounce and shadow rays bundled by the builder (`rays` per bundle at
 /// most, direction spread `dir_spread`, origin spread a tenth of the scene's diagonal, 16 open
-/// bundles), as `rtu bundle-scenes` makes them (same BVH, rays and seed), on the fixed datapath `bf`
-/// over the scene's grid; children get re-bounded bundles with `rebound` ([`job_trees`]).
-pub fn scene_streams(
+/// bundles), as `rtu bundle-scenes` makes them (same BVH, rays and seed), on the datapath `dp` (the
+/// fixed one over the scene's grid); children get re-bounded bundles with `rebound` ([`job_trees`]).
+#[allow(clippy::type_complexity)]
+pub fn scene_streams<P: SceneDatapath>(
     scene: &golden::scene::tri_scene::TriScene,
     seed: u64,
     (w, h): (usize, usize),
     tile: usize,
     (rays, dir_spread): (usize, f64),
-    bf: &BundleFixFormat,
+    dp: &P,
     rebound: bool,
-) -> Result<Vec<(&'static str, String, JobTrees)>, String> {
+) -> Result<Vec<(&'static str, String, JobTrees<P>)>, String> {
     use golden::bundle::build::{build, tiles, BuildParams};
     use golden::scene::traverse::{trace, AabbOnly};
     let bvh = Bvh::build(&scene.tris, 4).map_err(|e| e.to_string())?;
@@ -368,13 +472,13 @@ pub fn scene_streams(
     let b = scene.bounds();
     let diag = (b.max - b.min).length();
     let (lo, hi) = scene.grid_bounds();
-    let map = GridMap::for_bounds(bf.base, lo, hi).map_err(|e| e.to_string())?;
+    let ctx = dp.scene_ctx(lo, hi)?;
     let mut out = vec![];
     let built = tiles(&prim, w, h, tile).map_err(|e| e.to_string())?;
     out.push((
         "primary",
         format!("tile{tile}x{tile}"),
-        job_trees(bf, &map, &bvh, &prim, &built, rebound)
+        job_trees(dp, &ctx, &bvh, &prim, &built, rebound)
             .map_err(|e| format!("primary rays: {e}"))?,
     ));
     let p = BuildParams {
@@ -389,7 +493,7 @@ pub fn scene_streams(
         out.push((
             set,
             format!("build{rays}@{dir_spread}"),
-            job_trees(bf, &map, &bvh, r, &built, rebound)
+            job_trees(dp, &ctx, &bvh, r, &built, rebound)
                 .map_err(|e| format!("{set} rays: {e}"))?,
         ));
     }

@@ -274,22 +274,32 @@ fn stream_float_verilator_matches_model_and_rtl_fp16_p13() {
 
 /// Scene job streams, closed loop (`tb::bundle::stream_scene`): on a small room, primary rays in 4x4
 /// tiles and bounce and shadow rays bundled 16 at most, without and with re-bounding, every job's mask
-/// and re-bounded bundle equal the recorded traversal's and every clock equals the clock-by-clock model; the pair's input is used in exactly the
-/// model's busy-pair count of clocks. Prints utilisation and clocks per job (figures, not thresholds).
+/// and re-bounded bundle equal the recorded traversal's and every clock equals the clock-by-clock model;
+/// the pair's input is used in exactly the model's busy-pair count of clocks. Prints utilisation and
+/// clocks per job (figures, not thresholds).
 #[test]
 fn stream_scene_jobs_replay_closed_loop_b12() {
-    big_stack(scene_jobs_replay);
+    big_stack(|| scene_jobs_replay::<rtl::BundleStreamB12>(preset(1), (24, 16)));
 }
 
-fn scene_jobs_replay() {
-    use tb::bundle::stream_scene::{run_decided, run_trees, scene_streams};
-    let bf = preset(1);
+/// The same through the float processor (binary16), whose re-bounded bundles are the float rule's, on
+/// 16x12 rays (its rust-hdl simulation is slower).
+#[test]
+fn stream_float_scene_jobs_replay_closed_loop_fp16() {
+    big_stack(|| scene_jobs_replay::<rtl::BundleStreamFp16>(FloatFormat::FP16, (16, 12)));
+}
+
+fn scene_jobs_replay<S: BundleStreamIo>(dp: S::Dp, image: (usize, usize))
+where
+    S::Dp: tb::bundle::stream_scene::SceneDatapath,
+{
+    use tb::bundle::stream_scene::{run_decided, run_trees, scene_streams, JobTrees};
     let sc = golden::scene::tri_scene::by_name("room", 1, None).unwrap();
-    let keep = scene_streams(&sc, 1, (24, 16), 4, (16, 0.2), &bf, false).unwrap();
-    let stored = scene_streams(&sc, 1, (24, 16), 4, (16, 0.2), &bf, true).unwrap();
+    let keep = scene_streams(&sc, 1, image, 4, (16, 0.2), &dp, false).unwrap();
+    let stored = scene_streams(&sc, 1, image, 4, (16, 0.2), &dp, true).unwrap();
     assert_eq!(keep.len(), 3);
     // Re-bounding hands some jobs a bundle other than their root's, and never without it.
-    let rebounded = |t: &tb::bundle::stream_scene::JobTrees| {
+    let rebounded = |t: &JobTrees<S::Dp>| {
         t.jobs
             .iter()
             .filter(|j| j.job.bundle != t.jobs[t.bundles[j.bundle].1].job.bundle)
@@ -309,18 +319,19 @@ fn scene_jobs_replay() {
         .chain(stored.iter().map(|s| ("stored", s)))
     {
         assert!(trees.jobs.len() > trees.bundles.len(), "{set}: {trees:?}");
-        let mut dut = StreamRtl::<rtl::BundleStreamB12>::new(&bf);
-        let r = run_trees(&bf, trees, &mut dut, || {}).unwrap_or_else(|e| panic!("{set}: {e}"));
+        let mut dut = StreamRtl::<S>::new(&dp);
+        let r = run_trees(&dp, trees, &mut dut, || {}).unwrap_or_else(|e| panic!("{set}: {e}"));
         assert_eq!(r.jobs, trees.jobs.len() as u64, "{set}");
         assert_eq!(
             r.busy, trees.pair_cycles,
             "{set}: busy clocks = model pair cycles"
         );
-        let mut dut = StreamRtl::<rtl::BundleStreamB12>::new(&bf);
-        let d = run_decided(&bf, trees, &mut dut).unwrap_or_else(|e| panic!("{set}: {e}"));
+        let mut dut = StreamRtl::<S>::new(&dp);
+        let d = run_decided(&dp, trees, &mut dut).unwrap_or_else(|e| panic!("{set}: {e}"));
         println!(
-            "{set} {bundling} {rule}: {} bundles, {} jobs, {} clocks, utilisation {:.3}, {:.2} \
+            "{} {set} {bundling} {rule}: {} bundles, {} jobs, {} clocks, utilisation {:.3}, {:.2} \
              clocks/job; decided-only stream: {:.3} tests/clock",
+            dp.label(),
             r.bundles,
             r.jobs,
             r.clocks,
