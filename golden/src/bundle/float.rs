@@ -134,7 +134,8 @@ pub fn quantize_bundle(f: &FloatFormat, b: &Bundle) -> Result<FloatBundle, Error
 
 /// Quantises a world bundle into `f` on the direction scale `2^j` of the caller's choice (directions
 /// times `2^j`, t values times `2^-j`, each rounded outward): [`quantize_bundle`] takes the bundle's own
-/// exponent. The pair's answers do not depend on the scale (a ray is the same for `d 2^j` and
+/// exponent. The pair's answers are sound on any scale, and do not depend on it while every value stays
+/// in the format's normal range (a ray is the same for `d 2^j` and
 /// `t 2^-j`); a float keeps its relative precision under a power-of-two scale, so a ray put on the scale
 /// of a bundle around it loses nothing unless a value leaves the format's normal range (then it is still
 /// rounded outward). The rays of one bundle on one scale is what float re-bounding needs

@@ -1,5 +1,5 @@
-//! Re-bounding on the fixed datapath: the bundle a results processor can gather around the rays a split
-//! keeps, from the rays as they sit in its ray store (quantised tiny bundles), while they stream through
+//! Re-bounding on the fixed datapath (the float datapath's simpler rule is in its own section below):
+//! the bundle a results processor can gather around the rays a split keeps, from the rays as they sit in its ray store (quantised tiny bundles), while they stream through
 //! the pair. This is the rule the hardware can follow bit for bit; [`crate::bundle::traverse`] re-bounds
 //! in world units instead (`Bundle::around` of the kept rays, then quantised).
 //!

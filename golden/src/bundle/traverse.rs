@@ -15,7 +15,9 @@
 //! pair during a split, at no extra cycle; the streaming processors `rtl::bundle::stream::BundleStream`
 //! and `rtl::bundle::stream_float::BundleStreamFloat` do, bit for bit; on the float datapath the rays are
 //! stored on the scale of their original bundle, and the pair's two-ray answers are those of the stored
-//! rays). Distances
+//! rays; under `keep` and `world` the float path quantises each ray on its own scale instead, which gives
+//! the same answers while no value leaves the format's normal range: in `rtu bundle-scenes` the float
+//! `stored` rows equal the `world` rows in every count). Distances
 //! are not shortened by hits (an "all hits" traversal), so the node visits do not depend on child order.
 //!
 //! Every answer is checked: "all hit" with a ray of the tested bundle that misses (every ray of the
@@ -541,7 +543,8 @@ mod tests {
     /// with directions of one scale exponent it is world re-bounding exactly; with directions of many
     /// lengths it still never contradicts the exact tests (a looser t range may decide less). On the
     /// float datapath (rays on their bundle's scale) it is world re-bounding exactly in binary32, where
-    /// no value leaves the normal range, and checked in binary16. The exact path refuses it.
+    /// no value leaves the normal range, and in binary16 on the camera rays; on the rays of many lengths
+    /// binary16 is only checked. The exact path refuses it.
     #[test]
     fn stored_ray_rebounding_is_checked_on_the_fixed_and_float_datapaths() {
         let (sc, bvh, rays) = setup();
@@ -594,7 +597,8 @@ mod tests {
                     stored.decided > 0 && stored.rays == world.rays,
                     "{stored:?}"
                 );
-                if f == FloatFormat::FP32 {
+                // Binary32 everywhere; binary16 on the room's camera rays (directions of one length).
+                if f == FloatFormat::FP32 || std::ptr::eq(rs, &rays) {
                     assert_eq!(stored, world, "{}", f.name());
                 }
             }

@@ -12,7 +12,7 @@
 //! | [`stream_ctl::StreamCtl`] | `bundle/stream_ctl.rs` | the control of both streaming processors |
 //! | [`stream_float::BundleStreamFloat`] | `bundle/stream_float.rs` | the same around the float pair, `golden::bundle::stream` |
 //! | [`ray_store::RayStore`] | `bundle/ray_store.rs` | the two-bank ray store of both processors |
-//! | [`rebound::ReboundAcc`] | `bundle/rebound.rs` | re-bounding in the fixed streaming processor, `golden::bundle::rebound` |
+//! | [`rebound::ReboundAcc`] | `bundle/rebound.rs` | re-bounding in the streaming processors (fixed, and float on [`rebound::OrderKeys`]), `golden::bundle::rebound` |
 //!
 //! Which configurations exist: [`registry`].
 

@@ -1003,7 +1003,7 @@ pub fn bundle_stream_float_doc(f: &FloatFormat, cuts: usize) -> FamilyDoc {
             port("ray_d_lo", word("stored ray's direction, `RD(d * 2^j)` on its bundle's scale `j` (see Encoding)")),
             port("ray_d_hi", word("stored ray's direction, `RU(d * 2^j)`")),
             port("ray_t", word("stored ray's `t_max`, `RU(t_max * 2^-j)`; +inf allowed")),
-            port("ray_t_lo", word("stored ray's `t_max`, `RD(t_max * 2^-j)` (for re-bounding only)")),
+            port("ray_t_lo", word("stored ray's `t_max`, `RD(t_max * 2^-j)`, never above the true value (used only by re-bounding; a larger value can make the pair's \"all hit\" on a fed-back `rb_*` bundle wrong)")),
         ],
         job: vec![
             port("o_lo", word("job bundle's origin box, lower corner `RD(o_min)`")),
@@ -1073,10 +1073,10 @@ fn rebound_float_doc() -> (Vec<(String, String)>, String) {
         port("rb_valid", "report: 1 when the job was split and kept a ray; the `rb_*` ports then hold the re-bounded bundle of its kept rays, else every `rb_*` port is 0"),
         port("rb_o_lo", "re-bounded bundle's origin box, lower corner"),
         port("rb_o_hi", "re-bounded bundle's origin box, upper corner"),
-        port("rb_d_lo", "re-bounded bundle's direction box, lower corner, on the stored rays' scale"),
-        port("rb_d_hi", "re-bounded bundle's direction box, upper corner"),
-        port("rb_t_lo", "re-bounded bundle's smallest `t_max`"),
-        port("rb_t_hi", "re-bounded bundle's largest `t_max`"),
+        port("rb_d_lo", "re-bounded bundle's direction box, lower corner, on the stored rays' scale `2^j`"),
+        port("rb_d_hi", "re-bounded bundle's direction box, upper corner, on the stored rays' scale"),
+        port("rb_t_lo", "re-bounded bundle's smallest `t_max`, rounded down, in the stored rays' t units (`t_world = t_port * 2^j`)"),
+        port("rb_t_hi", "re-bounded bundle's largest `t_max`, rounded up, in the stored rays' t units"),
     ];
     let rule = "6. **Re-bounding**: while a split job's rays go through the pair, the block gathers the \
 bundle around the rays it keeps (mask bit set), from the rays as stored (`ray_*`, `ray_t_lo`), and \
@@ -1086,8 +1086,10 @@ every field over the kept rays, in the numeric order with `-0` below `+0` (a NaN
 quantisation yields, orders beyond the infinity of its sign). Nothing is rescaled or rounded, so on \
 rays stored on one scale the result is exactly the bundle around the kept rays rounded outward on that \
 scale; on rays of different scales it still contains every kept ray's tiny bundle, so the pair's \
-answers on it hold for those rays. Feed it back as the job bundle of the next node (with \
-`active = mask`). A decided job, or a split one that kept no ray, reports `rb_valid = 0` and zeros. \
+answers on it hold for those rays. Feed it back as it is as the job bundle of the next node (with \
+`active = mask`): it stays on the stored rays' scale `j` (directions times `2^j`, t in units of \
+`2^j`), and the job port takes a bundle on any scale, the pair's answers being sound for every \
+`j`. A decided job, or a split one that kept no ray, reports `rb_valid = 0` and zeros. \
 When every ray stays (`mask = active`) the caller may keep the job's own bundle instead (the \
 traversal model in the repository does).\n"
         .to_string();
