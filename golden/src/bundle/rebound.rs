@@ -350,6 +350,31 @@ mod tests {
         assert!(n > 1_000, "only {n} ray sets quantised");
     }
 
+    /// Checks the pair's answers `(all_hit, all_miss)` on the hull of the rays `keep` of case `c`
+    /// against their exact hits, and counts the outcome (all hit, all miss, neither).
+    fn judge(
+        c: &crate::bundle::gen::BundleCase,
+        keep: &[usize],
+        (all_hit, all_miss): (bool, bool),
+        outcomes: &mut [usize; 3],
+        what: impl Fn() -> String,
+    ) {
+        let hits: Vec<bool> = keep
+            .iter()
+            .map(|&k| ray_hits_exact(&c.rays[k], &c.bounds).unwrap())
+            .collect();
+        let ctx = || format!("{}\n  box {:?}\n  hits {hits:?}", what(), c.bounds);
+        assert!(!all_miss || hits.iter().all(|&x| !x), "{}", ctx());
+        assert!(!all_hit || hits.iter().all(|&x| x), "{}", ctx());
+        outcomes[if all_hit {
+            0
+        } else if all_miss {
+            1
+        } else {
+            2
+        }] += 1;
+    }
+
     /// The pair's answers on the hull are sound for the rays kept: "all miss" only if none of them hits,
     /// "all hit" only if every one does (exact oracle), with both answers and undecided ones occurring.
     #[test]
@@ -373,28 +398,13 @@ mod tests {
                     continue;
                 };
                 n += 1;
-                let hits: Vec<bool> = keep
-                    .iter()
-                    .map(|&k| ray_hits_exact(&c.rays[k], &c.bounds).unwrap())
-                    .collect();
-                let all_hit = all_hit_fix(&bf, &h.q, &boxes.inner);
-                let all_miss = all_miss_fix(&bf, &h.q, &boxes.outer);
-                let ctx = || {
-                    format!(
-                        "{}: box {:?}\n  hull {h:?}\n  hits {hits:?}",
-                        bf.name(),
-                        c.bounds
-                    )
-                };
-                assert!(!all_miss || hits.iter().all(|&x| !x), "{}", ctx());
-                assert!(!all_hit || hits.iter().all(|&x| x), "{}", ctx());
-                outcomes[if all_hit {
-                    0
-                } else if all_miss {
-                    1
-                } else {
-                    2
-                }] += 1;
+                let answers = (
+                    all_hit_fix(&bf, &h.q, &boxes.inner),
+                    all_miss_fix(&bf, &h.q, &boxes.outer),
+                );
+                judge(&c, &keep, answers, &mut outcomes, || {
+                    format!("{}: hull {h:?}", bf.name())
+                });
             }
             assert!(
                 outcomes.iter().all(|&c| c > 100),
@@ -530,28 +540,13 @@ mod tests {
                     continue;
                 };
                 n += 1;
-                let hits: Vec<bool> = keep
-                    .iter()
-                    .map(|&k| ray_hits_exact(&c.rays[k], &c.bounds).unwrap())
-                    .collect();
-                let all_hit = all_hit_float(&f, &h, &boxes.inner);
-                let all_miss = all_miss_float(&f, &h, &boxes.outer);
-                let ctx = || {
-                    format!(
-                        "{}: box {:?}\n  hull {h:?}\n  hits {hits:?}",
-                        f.name(),
-                        c.bounds
-                    )
-                };
-                assert!(!all_miss || hits.iter().all(|&x| !x), "{}", ctx());
-                assert!(!all_hit || hits.iter().all(|&x| x), "{}", ctx());
-                outcomes[if all_hit {
-                    0
-                } else if all_miss {
-                    1
-                } else {
-                    2
-                }] += 1;
+                let answers = (
+                    all_hit_float(&f, &h, &boxes.inner),
+                    all_miss_float(&f, &h, &boxes.outer),
+                );
+                judge(&c, &keep, answers, &mut outcomes, || {
+                    format!("{}: hull {h:?}", f.name())
+                });
             }
             assert!(
                 outcomes.iter().all(|&c| c > 100),
