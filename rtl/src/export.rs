@@ -528,7 +528,9 @@ pub fn catalog() -> Vec<Exported> {
     for (bf, cuts) in crate::bundle::stream::bundle_stream_configs() {
         add(
             crate::bundle::stream::bundle_stream_module_cuts(&bf, cuts),
-            crate::bundle::pair_fix::bundle_fix_latency(cuts) + 1,
+            golden::bundle::stream::decided_latency(crate::bundle::pair_fix::bundle_fix_latency(
+                cuts,
+            )),
             Family::BundleStream { bf, cuts },
         );
     }
@@ -544,7 +546,9 @@ pub fn catalog() -> Vec<Exported> {
     for (f, cuts) in crate::bundle::stream_float::bundle_stream_float_configs() {
         add(
             crate::bundle::stream_float::bundle_stream_float_module(&f, cuts),
-            crate::bundle::pair_float::bundle_float_latency(cuts) + 1,
+            golden::bundle::stream::decided_latency(
+                crate::bundle::pair_float::bundle_float_latency(cuts),
+            ),
             Family::BundleStreamFloat { f, cuts },
         );
     }

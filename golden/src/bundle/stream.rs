@@ -18,22 +18,30 @@
 //!   flight and the new one (`queued + in flight <` [`stream_queue`]`(L)`). A `start` while `ready` is taken: the
 //!   bundle enters the pair, its tag, active mask, ray set and outer box ride a delay line beside it.
 //! - A ray pair is issued (the pair in two-ray mode) in the clock after the engine addressed it.
-//! - The pair's answer `L` clocks after entry: a decided bundle, or one with no active ray, reports in
-//!   the next clock (`done`); an undecided one joins the split queue (visible the next clock). Ray
+//! - The pair's answer `L` clocks after entry: a decided bundle, or one with no active ray, is loaded
+//!   into the report stage and reports (`done`) two clocks after its answer; an undecided one joins the
+//!   split queue (visible the next clock). Ray
 //!   answers are ORed into one accumulator (ray pairs come back in the order they went, one job after
 //!   another); the job's last pair reports. Each ray rides beside the pair as it was read from the
 //!   store; the kept ones (answer "may hit") are folded into the job's re-bounded bundle
 //!   ([`PairDatapath::gather`]: the hull of [`crate::bundle::rebound`], on the fixed datapath with its
 //!   rescaling, on the float one a `min`/`max` of the fields; both folds are associative and
 //!   commutative, so the block may gather a pair's two rays first), which reports with the job.
+//! - The report stage: a job answered in a clock is held in the report registers for one clock and
+//!   reaches the result ports in the next (`done` high there). The clock between is what lets the block
+//!   fold a pair's answer into the re-bounded bundle from registers (the pair's answer registered
+//!   beside the gatherer) instead of in the answer's own clock.
 //! - The engine holds one job: each clock it addresses the next two active rays in the store (indices
 //!   and set), and loads the queue's head in the clock it addresses its job's last pair (or whenever it
 //!   is idle), so that consecutive split jobs issue without a gap.
-//! - `rst` (synchronous): drops every job in flight, queued or being split, and the accumulator; the
-//!   ray store and the result registers keep their contents.
+//! - `rst` (synchronous): drops every job in flight, queued, being split or in the report stage, and
+//!   the accumulator; the ray store and the result registers keep their contents (a job answered in the
+//!   `rst` clock still loads the report registers, and its fields reach the result ports a clock
+//!   later, with `done` low).
 //!
-//! Latency: a decided job reports `L + 1` clocks after its start (`done` in that clock); a split job
-//! with `k` pair clocks at least `2L + 3 + k`, more when it waits for the engine.
+//! Latency: a decided job reports [`decided_latency`]`(L) = L + 2` clocks after its start (`done` in
+//! that clock); a split job with `k` pair clocks at least [`split_latency`]`(L, k) = 2L + 4 + k`, more
+//! when it waits for the engine.
 //!
 //! Contract (as `BundleSplit`'s): the rays a job may read (its active ones in its set) are written no
 //! later than its start clock and not again until its `done`.
@@ -67,6 +75,20 @@ pub const fn stream_queue(latency: usize) -> usize {
 }
 /// Bits of a job's tag.
 pub const STREAM_TAG_BITS: usize = 8;
+
+/// Clocks from a decided job's start to its `done` over a pair of `latency` clocks: the pair, the
+/// answer's clock and the report stage.
+pub const fn decided_latency(latency: usize) -> usize {
+    latency + 2
+}
+
+/// The fewest clocks from a split job's start to its `done` over a pair of `latency` clocks, with `k`
+/// clocks of ray pairs: the bundle's trip through the pair, the queue, the engine and the store's read
+/// (3 clocks), the first ray pair's trip, the `k - 1` pairs behind it, the last answer's clock and the
+/// report stage.
+pub const fn split_latency(latency: usize, k: usize) -> usize {
+    2 * latency + 4 + k
+}
 
 /// A datapath of the pair, as the results processor uses it.
 pub trait PairDatapath {
@@ -233,6 +255,9 @@ pub struct StreamModel<P: PairDatapath> {
     acc: u16,
     /// The re-bounded bundle of the kept rays answered so far of the job being answered.
     hull: Option<P::Hull>,
+    /// The report registers: the job answered in the last clock (`done` set), or the last one's
+    /// fields.
+    stage: StreamOut<P::Hull>,
     out: StreamOut<P::Hull>,
     /// Clocks the pair's input was used, and clocks run.
     pub busy_clocks: u64,
@@ -261,6 +286,7 @@ impl<P: PairDatapath> StreamModel<P> {
             issue: None,
             acc: 0,
             hull: None,
+            stage: StreamOut::default(),
             out: StreamOut {
                 ready: true,
                 ..Default::default()
@@ -398,9 +424,14 @@ impl<P: PairDatapath> StreamModel<P> {
         if let Some((set, i, r)) = input.write {
             self.store[set as usize % STREAM_SETS][i as usize % STREAM_RAYS] = r;
         }
-        self.out.done = false;
+        // The report stage moves on to the result ports; this clock's answer loads it.
+        self.out = StreamOut {
+            ready: false,
+            ..self.stage
+        };
+        self.stage.done = false;
         if let Some((tag, all_hit, all_miss, mask, rebound)) = done {
-            self.out = StreamOut {
+            self.stage = StreamOut {
                 ready: false,
                 done: true,
                 tag,
@@ -418,6 +449,7 @@ impl<P: PairDatapath> StreamModel<P> {
             self.issue = None;
             self.acc = 0;
             self.hull = None;
+            self.stage.done = false;
             self.out.done = false;
         }
         self.clocks += 1;
@@ -471,15 +503,16 @@ mod tests {
     }
 
     #[test]
-    fn decided_jobs_enter_every_clock_and_report_l_plus_one_clocks_later() {
+    fn decided_jobs_enter_every_clock_and_report_l_plus_two_clocks_later() {
         let mut m = StreamModel::new(Toy, 3);
         let inputs: Vec<_> = (0..10u8)
             .map(|t| job((t % 2 == 0, t % 2 == 1), 0xff, t))
             .collect();
         let outs = run(&mut m, &inputs);
-        // Start in clock k (step k) -> done visible after step k + 3 (clock k + 4 = start + L + 1).
+        // Start in clock k (step k) -> answered in step k + 3, done visible after step k + 4 (clock
+        // k + 5 = start + L + 2).
         for t in 0..10usize {
-            let o = outs[t + 3];
+            let o = outs[t + decided_latency(3) - 1];
             assert!(o.done, "job {t}: {outs:?}");
             assert_eq!(o.tag as usize, t);
             assert_eq!(o.mask, if t % 2 == 0 { 0xff } else { 0 });
@@ -511,13 +544,15 @@ mod tests {
             .map(|(k, o)| (k, o.tag, o.mask, o.split))
             .collect();
         // Job 3 (decided) leaves first; jobs 1 and 2 split: 2 + 2 pair clocks issued back to back.
-        assert_eq!(dones[0], (5, 3, 1, false));
+        assert_eq!(dones[0], (6, 3, 1, false));
         assert_eq!((dones[1].1, dones[1].2, dones[1].3), (1, 0b1010, true));
         assert_eq!((dones[2].1, dones[2].2, dones[2].3), (2, 0b10, true));
         // Job 1: bundle answer after step 3, queued (visible after step 3), engine loads in step 4,
-        // addresses in steps 5, 6; issues in steps 6, 7; answers in steps 9, 10 -> done after step 10.
-        assert_eq!(dones[1].0, 10);
-        assert_eq!(dones[2].0, 12);
+        // addresses in steps 5, 6; issues in steps 6, 7; answers in steps 9, 10; the report stage in
+        // step 11 -> done after step 11.
+        assert_eq!(dones[1].0, 11);
+        assert_eq!(dones[1].0 + 1, split_latency(3, 2), "job 1 never waits");
+        assert_eq!(dones[2].0, 13);
         assert_eq!(m.busy_clocks, 3 + 4);
         // ready was low exactly in the clocks a pair was issued (steps 6..9 read ready before them).
         let low: Vec<_> = (0..outs.len()).filter(|&k| !outs[k].ready).collect();

@@ -27,21 +27,27 @@
 //!   "On the float datapath").
 //!
 //! # Timing of [`ReboundAcc`] (`L` = the pair's latency, at least 2)
-//! The two rays that enter the pair in a clock (from the store's read ports) ride a line of `L - 1`
-//! clocks beside it; the hull of the two is formed from the line's end and registered with them, so in
-//! the clock the pair answers, the bundle to fold is a choice between ray A, ray B and their hull, and the
-//! one loop (accumulator -> [`Hull2`] -> accumulator) holds a single rescale. The fold is associative
-//! and commutative, so folding a pair's hull equals folding its rays one at a time, as the model does.
+//! The gatherer works one clock behind the pair's answer: the control's decoded answer (and `rst`) are
+//! registered at its inputs, and it folds in the clock after the answer, loading its result registers
+//! in the clock the processor's report stage moves to the result ports (so `rb_*` come with `done`).
+//! The two rays that enter the pair in a clock (from the store's read ports) ride a line of `L` clocks
+//! beside it; the hull of the two is formed from the line's end and registered with them, so in the
+//! clock after the answer the bundle to fold is a choice, by registers, between ray A, ray B and their
+//! hull, and the one loop (accumulator -> [`Hull2`] -> accumulator) holds a single rescale. The fold is
+//! associative and commutative, so folding a pair's hull equals folding its rays one at a time, as the
+//! model does.
 //!
 //! On ECP5 (`scripts/timing`, seed 1) this loop, with the pair's answer choosing the bundle before the
 //! fold, limited the b12 processor to 58.4 MHz and the one over the 5-clock pair to 57.5 MHz while
 //! [`Hull2`] clamped the shift amount and subtracted it from the width in front of its shifters; with
 //! the masks made beside the shifts instead, the b12 processor reaches 63.0 MHz, limited by the pair's
-//! own edge test, and the 5-clock one 60.8 MHz, still in this loop. Two variants were slower: folding
-//! the accumulator with all three candidates from registers and letting the answer choose after the
-//! fold (50.6 MHz, 11,863 LUT4 against 7,880), and rescaling both operands of [`Hull2`] by their own
-//! clamped differences instead of swapping them (50.1 MHz, 8,918 LUT4). A second clock in the loop
-//! (the answer's choice registered, the report a clock later) is the next step.
+//! own edge test, and the 5-clock one 60.8 MHz, still in this loop, whose path began at the pair's
+//! answer register (the fp16 processor over the 13-clock pair: 68.9 MHz, 89% of the path routing).
+//! Two variants were slower: folding the accumulator with all three candidates from registers and
+//! letting the answer choose after the fold (50.6 MHz, 11,863 LUT4 against 7,880), and rescaling both
+//! operands of [`Hull2`] by their own clamped differences instead of swapping them (50.1 MHz, 8,918
+//! LUT4). Hence the clock between the answer and the fold (the report stage of
+//! `golden::bundle::stream`): the loop now starts and ends at the gatherer's own registers.
 
 use crate::cut::Line;
 pub use golden::bundle::rebound::J_BITS;
@@ -447,16 +453,18 @@ impl<const N: usize> Logic for OrderKeys<N> {
 /// The gatherer of a split job's re-bounded bundle; see the module documentation.
 ///
 /// # Inputs
-/// - `clock`, `rst` (synchronous: the bundle being gathered is dropped; the result registers keep
-///   their contents, except that a job whose last answer comes in the `rst` clock still loads them,
-///   as the control's own result registers and the model do);
+/// - `clock`, `rst` (synchronous, registered as the answer is: the bundle being gathered is dropped
+///   after the clock's answer is folded; the result registers keep their contents, except that a job
+///   whose last answer comes in the `rst` clock still loads them, as the control's report stage and
+///   the model do);
 /// - `a_*`, `b_*`: the rays entering the pair in this clock (rays A and B of a ray pair);
-/// - the pair's answer in this clock, from the control: `rays_back` (a ray pair's), `keep_a`, `keep_b`
-///   (ray A, ray B present and may hit), `last_back` (a job's last pair's), `bundle_done` (a bundle's
-///   that reports without a split).
+/// - the pair's answer in this clock, from the control (registered here, folded in the next clock):
+///   `rays_back` (a ray pair's), `keep_a`, `keep_b` (ray A, ray B present and may hit), `last_back` (a
+///   job's last pair's), `bundle_done` (a bundle's that reports without a split).
 ///
 /// # Outputs
-/// Result registers, loaded in the clock the control loads its own (the job's `done` in the next):
+/// Result registers, loaded in the clock after the answer, when the control's report stage moves to
+/// its result ports (the job's `done` in the next clock):
 /// `rb_valid` (a split job that kept a ray) and the hull `rb_o`, `rb_d`, `rb_t`, `rb_j`; all zero
 /// otherwise.
 #[derive(LogicBlock)]
@@ -501,6 +509,13 @@ pub struct ReboundAcc<const G: usize, const D: usize, const T: usize> {
     res_next: ItemSel<G, D, T>,
     res: ItemLine<G, D, T>,
     res_valid: DFF<Bit>,
+    /// The pair's answer and `rst`, registered: the gatherer works a clock behind the control.
+    rays_back_q: DFF<Bit>,
+    keep_a_q: DFF<Bit>,
+    keep_b_q: DFF<Bit>,
+    last_back_q: DFF<Bit>,
+    bundle_done_q: DFF<Bit>,
+    rst_q: DFF<Bit>,
     any_kept: Signal<Local, Bit>,
     valid_next: Signal<Local, Bit>,
 }
@@ -530,8 +545,8 @@ impl<const G: usize, const D: usize, const T: usize> ReboundAcc<G, D, T> {
             rb_d: Default::default(),
             rb_t: Default::default(),
             rb_j: Default::default(),
-            la: ItemLine::new(latency - 1),
-            lb: ItemLine::new(latency - 1),
+            la: ItemLine::new(latency),
+            lb: ItemLine::new(latency),
             pa: ItemLine::new(1),
             pb: ItemLine::new(1),
             pab: ItemLine::new(1),
@@ -546,6 +561,12 @@ impl<const G: usize, const D: usize, const T: usize> ReboundAcc<G, D, T> {
             res_next: Default::default(),
             res: ItemLine::new(1),
             res_valid: Default::default(),
+            rays_back_q: Default::default(),
+            keep_a_q: Default::default(),
+            keep_b_q: Default::default(),
+            last_back_q: Default::default(),
+            bundle_done_q: Default::default(),
+            rst_q: Default::default(),
             any_kept: Default::default(),
             valid_next: Default::default(),
         }
@@ -562,9 +583,26 @@ impl<const G: usize, const D: usize, const T: usize> Logic for ReboundAcc<G, D, 
         self.pab.clock.next = self.clock.val();
         self.acc.clock.next = self.clock.val();
         self.res.clock.next = self.clock.val();
-        dff_setup!(self, clock, acc_valid, res_valid);
+        dff_setup!(
+            self,
+            clock,
+            acc_valid,
+            res_valid,
+            rays_back_q,
+            keep_a_q,
+            keep_b_q,
+            last_back_q,
+            bundle_done_q,
+            rst_q
+        );
+        self.rays_back_q.d.next = self.rays_back.val();
+        self.keep_a_q.d.next = self.keep_a.val();
+        self.keep_b_q.d.next = self.keep_b.val();
+        self.last_back_q.d.next = self.last_back.val();
+        self.bundle_done_q.d.next = self.bundle_done.val();
+        self.rst_q.d.next = self.rst.val();
 
-        // Beside the pair; the pair's hull formed one clock before the answer.
+        // Beside the pair; the pair's hull formed in the answer's clock, folded in the next.
         for i in 0..6 {
             self.la.d_o[i].next = self.a_o[i].val();
             self.la.d_d[i].next = self.a_d[i].val();
@@ -598,21 +636,22 @@ impl<const G: usize, const D: usize, const T: usize> Logic for ReboundAcc<G, D, 
         self.hull_ab.y_j.next = self.lb.q_j.val();
         self.pab.d_j.next = self.hull_ab.h_j.val();
 
-        // What this clock folds: both rays (their hull), or the one kept.
-        self.any_kept.next = self.rays_back.val() & (self.keep_a.val() | self.keep_b.val());
+        // What this clock folds (the answer of the last clock): both rays (their hull), or the one kept.
+        self.any_kept.next =
+            self.rays_back_q.q.val() & (self.keep_a_q.q.val() | self.keep_b_q.q.val());
         self.valid_next.next = self.acc_valid.q.val() | self.any_kept.val();
-        self.kept.sel.next = self.keep_a.val();
+        self.kept.sel.next = self.keep_a_q.q.val();
         self.kept.clear.next = false;
-        self.fold.sel.next = self.keep_b.val();
+        self.fold.sel.next = self.keep_b_q.q.val();
         self.fold.clear.next = false;
         // Into the accumulator (or as the first bundle of the job), and the results.
         self.folded.sel.next = self.acc_valid.q.val();
         self.folded.clear.next = false;
         self.acc_next.sel.next = self.any_kept.val();
         self.acc_next.clear.next = false;
-        self.res_next.sel.next = self.last_back.val() | self.bundle_done.val();
+        self.res_next.sel.next = self.last_back_q.q.val() | self.bundle_done_q.q.val();
         self.res_next.clear.next =
-            self.bundle_done.val() | (self.last_back.val() & !self.valid_next.val());
+            self.bundle_done_q.q.val() | (self.last_back_q.q.val() & !self.valid_next.val());
         for i in 0..6 {
             self.kept.a_o[i].next = self.pab.q_o[i].val();
             self.kept.a_d[i].next = self.pab.q_d[i].val();
@@ -680,14 +719,14 @@ impl<const G: usize, const D: usize, const T: usize> Logic for ReboundAcc<G, D, 
 
         self.acc_valid.d.next = self.valid_next.val();
         self.res_valid.d.next = self.res_valid.q.val();
-        if self.last_back.val() {
+        if self.last_back_q.q.val() {
             self.acc_valid.d.next = false;
             self.res_valid.d.next = self.valid_next.val();
         }
-        if self.bundle_done.val() {
+        if self.bundle_done_q.q.val() {
             self.res_valid.d.next = false;
         }
-        if self.rst.val() {
+        if self.rst_q.q.val() {
             self.acc_valid.d.next = false;
         }
         self.rb_valid.next = self.res_valid.q.val();

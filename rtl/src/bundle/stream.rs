@@ -49,14 +49,17 @@
 //! # Sequencing (`L` = the pair's latency, [`bundle_fix_latency`]`(CUTS)`: 3, or 5 for `_p5`)
 //! ```text
 //! s           start taken: the bundle enters the pair; tag, active, set, outer box enter a delay line
-//! s+L         the answer: decided, or no active ray -> done in s+L+1; undecided -> split queue
+//! s+L         the answer: decided, or no active ray -> report stage in s+L+1, done in s+L+2;
+//!             undecided -> split queue
 //! then        the engine takes the queue's head (in the clock it addresses its previous job's last
 //!             pair, or when idle), addresses two rays a clock (bank A: ray A, bank B: ray B, address
 //!             {set, ray}), each pair entering the pair in the next clock with the job's outer box
-//! +L          each pair's answer, ORed into the accumulator; the job's last pair -> done next clock
+//! +L          each pair's answer, ORed into the accumulator; the job's last pair -> report stage in
+//!             the next clock (the gatherer folds the last rays there), done in the one after
 //! ```
-//! A decided job reports `L + 1` clocks after its start; a split job of `k` pair clocks no earlier
-//! than `2L + 3 + k`. Every input of the pair comes from a port, a register or a RAM output, as in
+//! A decided job reports `golden::bundle::stream::decided_latency(L) = L + 2` clocks after its start;
+//! a split job of `k` pair clocks no earlier than `golden::bundle::stream::split_latency(L, k) =
+//! 2L + 4 + k`. Every input of the pair comes from a port, a register or a RAM output, as in
 //! `BundleSplit`.
 //!
 //! # Structure
@@ -77,8 +80,8 @@ use crate::slab::fix::{code, sext};
 use golden::bundle::fix::{BundleFixFormat, FixBundle};
 use golden::bundle::rebound::ScaledBundle;
 use golden::bundle::stream::{
-    PairDatapath, StreamIn, StreamInOf, StreamJob, StreamOut, StreamOutOf, STREAM_RAYS,
-    STREAM_SETS, STREAM_TAG_BITS,
+    decided_latency, PairDatapath, StreamIn, StreamInOf, StreamJob, StreamOut, StreamOutOf,
+    STREAM_RAYS, STREAM_SETS, STREAM_TAG_BITS,
 };
 use golden::format::fixed::FixBox;
 use rust_hdl::prelude::*;
@@ -359,7 +362,7 @@ pub fn bundle_stream_module(bf: &BundleFixFormat) -> String {
 pub fn bundle_stream_verilog_of<S: BundleStreamIo>(dp: &S::Dp) -> (String, String, usize) {
     let module = S::module(dp);
     let v = verilog_named(&mut S::for_format(dp), &module);
-    (module, v, S::PAIR_LATENCY + 1)
+    (module, v, decided_latency(S::PAIR_LATENCY))
 }
 
 /// The exported configurations `(format, cut points of the pair)`, in the order of

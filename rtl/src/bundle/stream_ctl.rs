@@ -14,7 +14,8 @@
 //! the pair's latency `L` is given to [`StreamCtl::new`] (at most [`crate::cut::MAX_LINE`]).
 //!
 //! # Inputs
-//! - `clock`, `rst` (synchronous: drops every job in flight, queued or being split);
+//! - `clock`, `rst` (synchronous: drops every job in flight, queued, being split or in the report
+//!   stage);
 //! - the job port's control: `start`, `active` (16 bits), `job_set` (2 bits), `tag` (8 bits), and the
 //!   job's outer box `out_lo`, `out_hi` (arrays over x, y, z), sampled when the job is taken;
 //! - the pair's answer: `p_valid`, `p_tag` (the pair's 16-bit tag), `p_all_hit`, `p_all_miss`.
@@ -25,7 +26,9 @@
 //!   either: 0 for a bundle), `issue_lo`, `issue_hi` (the outer box of the ray pair);
 //! - to the ray store: `addr_a`, `addr_b` (`{set, ray}` of the next ray pair, read at the clock edge);
 //! - `ready`, `done`, `done_tag`, `all_hit`, `all_miss`, `split`, `mask`: the processor's result ports
-//!   (see [`crate::bundle::stream::BundleStream`]);
+//!   (see [`crate::bundle::stream::BundleStream`]): a job answered in a clock is loaded into the report
+//!   stage's registers and moves on to the result registers in the next clock, so `done` is high two
+//!   clocks after the answer (the clock between lets the gatherer fold the answer from registers);
 //! - the pair's answer in this clock, decoded: `ans_rays` (a ray pair's), `ans_keep_a`, `ans_keep_b`
 //!   (ray A, ray B present and may hit), `ans_last` (a job's last pair's), `ans_done` (a bundle's that
 //!   reports without a split), for [`crate::bundle::rebound::ReboundAcc`].
@@ -156,13 +159,19 @@ pub struct StreamCtl<
     issue_lo_q: [DFF<Bits<C>>; 3],
     issue_hi_q: [DFF<Bits<C>>; 3],
     acc_q: DFF<Bits<STREAM_RAYS>>,
-    // result registers
+    // the report stage (loaded in the answer's clock), then the result registers behind the ports
     done_q: DFF<Bit>,
     done_tag_q: DFF<Bits<STREAM_TAG_BITS>>,
     all_hit_q: DFF<Bit>,
     all_miss_q: DFF<Bit>,
     split_q: DFF<Bit>,
     mask_q: DFF<Bits<STREAM_RAYS>>,
+    out_done_q: DFF<Bit>,
+    out_tag_q: DFF<Bits<STREAM_TAG_BITS>>,
+    out_all_hit_q: DFF<Bit>,
+    out_all_miss_q: DFF<Bit>,
+    out_split_q: DFF<Bit>,
+    out_mask_q: DFF<Bits<STREAM_RAYS>>,
     // constants
     one16: Constant<Bits<STREAM_RAYS>>,
     zero16: Constant<Bits<STREAM_RAYS>>,
@@ -305,6 +314,12 @@ impl<const C: usize, const Q: usize, const Q3: usize, const PB: usize, const CB:
             all_miss_q: Default::default(),
             split_q: Default::default(),
             mask_q: Default::default(),
+            out_done_q: Default::default(),
+            out_tag_q: Default::default(),
+            out_all_hit_q: Default::default(),
+            out_all_miss_q: Default::default(),
+            out_split_q: Default::default(),
+            out_mask_q: Default::default(),
             one16: Constant::new(bits(1)),
             zero16: Constant::new(bits(0)),
             one_q: Constant::new(bits(1)),
@@ -412,7 +427,13 @@ impl<const C: usize, const Q: usize, const Q3: usize, const PB: usize, const CB:
             all_hit_q,
             all_miss_q,
             split_q,
-            mask_q
+            mask_q,
+            out_done_q,
+            out_tag_q,
+            out_all_hit_q,
+            out_all_miss_q,
+            out_split_q,
+            out_mask_q
         );
 
         // Taking a job: no ray pair this clock and room in the split queue for every bundle in flight.
@@ -632,7 +653,7 @@ impl<const C: usize, const Q: usize, const Q3: usize, const PB: usize, const CB:
             self.resv_q.d.next = self.resv_b.val() - self.one_c.val();
         }
 
-        // Results.
+        // The report stage: a job answered in this clock.
         if self.rays_back.val() {
             self.acc_q.d.next = self.acc_q.q.val() | self.got_a.val() | self.got_b.val();
         }
@@ -658,6 +679,14 @@ impl<const C: usize, const Q: usize, const Q3: usize, const PB: usize, const CB:
             self.mask_q.d.next = self.acc_q.q.val() | self.got_a.val() | self.got_b.val();
         }
 
+        // The report stage moves on to the result ports.
+        self.out_done_q.d.next = self.done_q.q.val();
+        self.out_tag_q.d.next = self.done_tag_q.q.val();
+        self.out_all_hit_q.d.next = self.all_hit_q.q.val();
+        self.out_all_miss_q.d.next = self.all_miss_q.q.val();
+        self.out_split_q.d.next = self.split_q.q.val();
+        self.out_mask_q.d.next = self.mask_q.q.val();
+
         if self.rst.val() {
             self.head_q.d.next = self.slot_k[0].val();
             self.tail_q.d.next = self.slot_k[0].val();
@@ -667,15 +696,16 @@ impl<const C: usize, const Q: usize, const Q3: usize, const PB: usize, const CB:
             self.issue_q.d.next = false;
             self.acc_q.d.next = self.zero16.val();
             self.done_q.d.next = false;
+            self.out_done_q.d.next = false;
         }
 
         self.ready.next = self.ready_l.val();
-        self.done.next = self.done_q.q.val();
-        self.done_tag.next = self.done_tag_q.q.val();
-        self.all_hit.next = self.all_hit_q.q.val();
-        self.all_miss.next = self.all_miss_q.q.val();
-        self.split.next = self.split_q.q.val();
-        self.mask.next = self.mask_q.q.val();
+        self.done.next = self.out_done_q.q.val();
+        self.done_tag.next = self.out_tag_q.q.val();
+        self.all_hit.next = self.out_all_hit_q.q.val();
+        self.all_miss.next = self.out_all_miss_q.q.val();
+        self.split.next = self.out_split_q.q.val();
+        self.mask.next = self.out_mask_q.q.val();
         self.ans_rays.next = self.rays_back.val();
         self.ans_keep_a.next = self.rays_back.val() & self.p_all_hit.val();
         self.ans_keep_b.next =

@@ -40,8 +40,9 @@
 //! codes; no exponent), all zero when `rb_valid` is low.
 //!
 //! # Sequencing (`L` = [`bundle_float_latency`]`(CUTS)`: 9, or 13 for `_p13`)
-//! A decided job reports `L + 1` clocks after its start; a split job of `k` pair clocks no earlier than
-//! `2L + 3 + k`. Up to `L` bundles are in the pair at once, so the split queue has 16 entries
+//! A decided job reports `golden::bundle::stream::decided_latency(L) = L + 2` clocks after its start
+//! (the pair, the answer's clock, the report stage); a split job of `k` pair clocks no earlier than
+//! `golden::bundle::stream::split_latency(L, k) = 2L + 4 + k`. Up to `L` bundles are in the pair at once, so the split queue has 16 entries
 //! (`golden::bundle::stream::stream_queue`): `ready` needs the queue plus the bundles in flight below
 //! 16, which a stream of decided jobs never reaches, and the queue cannot overflow.
 

@@ -1108,8 +1108,8 @@ fn stream_doc(p: StreamPairText) -> FamilyDoc {
         STREAM_TAG_BITS,
         STREAM_ADDR_BITS,
     );
-    let decided = l + 1;
-    let split0 = 2 * l + 3;
+    let decided = golden::bundle::stream::decided_latency(l);
+    let split0 = golden::bundle::stream::split_latency(l, 0);
     let what = format!(
         "The results processor with jobs in flight, around one {kind} AllHit / AnyHit pair \
          (`{pair}`): a job is one ray bundle against one node box, with a tag. A job is taken \
@@ -1180,32 +1180,27 @@ could not take every bundle in flight plus this one; it depends on registers onl
 per clock in index order (an odd count leaves the last pair's second slot empty) and go through the \
 pair in two-ray mode in the next clock, against the outer box kept from the start clock; ray `i`'s \
 answer is AnyHit's bounds on its tiny bundle (\"may hit\"). The next queued job follows without a gap. \
-`done` is high {l} + 1 clocks after the job's last pair enters the pair: no earlier than \
+`done` is high {l} + 2 clocks after the job's last pair enters the pair: no earlier than \
 `s + {split0} + ceil(n / 2)`, `n = popcount(active)`, later when the job waits in the queue.
-5. **Report**: at most one job reports a clock. `done` is high for one clock; `done_tag`, `all_hit`, \
+5. **Report**: a job is answered in one clock, held in the report stage's registers in the next and \
+reported in the one after. At most one job reports a clock. `done` is high for one clock; `done_tag`, `all_hit`, \
 `all_miss`, `split` and `mask` are valid from that clock and held until the next `done`. `mask = active` \
 when `all_hit`, `0` when `all_miss`, the OR of the rays' \"may hit\" answers when `split`. Tags are \
 returned as given; keep the tags of jobs in flight distinct to tell their reports apart.
 {rb_rule}
 **Reset**: `rst` high in a clock drops, at the end of that clock, every job in flight (in the pair, \
-queued, or being split): no `done` follows for any of them, and `ready` is 1 from the next clock. A \
-`start` in a clock with `rst` high is not taken; a ray store write is. The ray store and the report \
-registers keep their contents.",
+queued, being split, or in the report stage): no `done` follows for any of them, and `ready` is 1 \
+from the next clock. A `start` in a clock with `rst` high is not taken; a ray store write is. The ray \
+store keeps its contents; so do the report registers{rb_too}, except that the fields of a job answered \
+in the `rst` clock or the clock before still reach them (with `done` low).",
+        rb_too = if rb_rule.is_empty() {
+            ""
+        } else {
+            " (re-bounding's included)"
+        },
         enc = p.enc,
         grid = p.format,
     );
-    // The reset paragraph also covers the re-bounding registers, where there are some.
-    let rules = if rb_rule.is_empty() {
-        rules
-    } else {
-        rules.replace(
-        "The ray store and the report \
-registers keep their contents.",
-        "The ray store and the report registers (re-bounding's included) keep their contents, except \
-that a job whose last answer comes in the `rst` clock itself still loads them (with no `done`); the \
-bundle being re-bounded is dropped.",
-        )
-    };
     FamilyDoc {
         what,
         params,

@@ -342,15 +342,18 @@ where
     }
 }
 
-/// In the waveform: decided jobs started on consecutive clocks each report (`done`) `L + 1` clock edges
-/// after their start, one a clock, while `ready` stays high; then a split job of 16 rays holds `ready`
-/// low for its 8 pair clocks and reports no earlier than `2L + 3 + 8` edges after its start.
+/// In the waveform: decided jobs started on consecutive clocks each report (`done`)
+/// `decided_latency(L) = L + 2` clock edges after their start, one a clock, while `ready` stays high;
+/// then a split job of 16 rays holds `ready` low for its 8 pair clocks and reports no earlier than
+/// `split_latency(L, 8) = 2L + 4 + 8` edges after its start.
 fn waveform_timing<S: BundleStreamIo>(dp: S::Dp, name: String)
 where
     S::Dp: StreamCases,
 {
     big_stack(move || {
-        use golden::bundle::stream::{PairDatapath, StreamInOf, StreamJob};
+        use golden::bundle::stream::{
+            decided_latency, split_latency, PairDatapath, StreamInOf, StreamJob,
+        };
         let (lo, hi) = tb::campaign::campaign_bounds();
         let mut gen = golden::bundle::gen::BundleGen::new(21, lo, hi, 0.6);
         let mut model = tb::bundle::stream::stream_model::<S>(&dp);
@@ -417,12 +420,12 @@ where
         let l = S::PAIR_LATENCY;
         assert_eq!(
             trace.edges_between(starts[0], dones[0]),
-            l + 1,
-            "decided: L + 1"
+            decided_latency(l),
+            "decided: L + 2"
         );
         let split = trace.edges_between(starts[1], dones[1]);
         assert!(
-            split >= 2 * l + 3 + 8,
+            split >= split_latency(l, 8),
             "split job reported after {split} edges"
         );
         // ready falls once, for the split job's eight pair clocks.
