@@ -27,15 +27,15 @@
 //!   "On the float datapath").
 //!
 //! # Timing of [`ReboundAcc`] (`L` = the pair's latency, at least 2)
-//! The gatherer works one clock behind the pair's answer: the control's decoded answer (and `rst`) are
-//! registered at its inputs, and it folds in the clock after the answer, loading its result registers
-//! in the clock the processor's report stage moves to the result ports (so `rb_*` come with `done`).
-//! The two rays that enter the pair in a clock (from the store's read ports) ride a line of `L` clocks
-//! beside it; the hull of the two is formed from the line's end and registered with them, so in the
-//! clock after the answer the bundle to fold is a choice, by registers, between ray A, ray B and their
-//! hull, and the one loop (accumulator -> [`Hull2`] -> accumulator) holds a single rescale. The fold is
-//! associative and commutative, so folding a pair's hull equals folding its rays one at a time, as the
-//! model does.
+//! The gatherer folds one clock behind the pair's answer, loading its result registers in the clock
+//! the processor's report stage moves to the result ports (so `rb_*` come with `done`). The two rays
+//! that enter the pair in a clock (from the store's read ports) ride a line of `L - 1` clocks beside it;
+//! the hull of the two is formed from the line's end and registered with them, so in the answer's clock
+//! the answer only chooses ray A, ray B or their hull into the operand register `op` (with whether it
+//! kept any, the end of the job, and `rst`); in the next clock `op` is folded, and the one loop
+//! (accumulator -> [`Hull2`] -> accumulator) holds a single rescale and starts and ends at the
+//! gatherer's own registers. The fold is associative and commutative, so folding a pair's hull equals
+//! folding its rays one at a time, as the model does.
 //!
 //! On ECP5 (`scripts/timing`, seed 1) this loop, with the pair's answer choosing the bundle before the
 //! fold, limited the b12 processor to 58.4 MHz and the one over the 5-clock pair to 57.5 MHz while
@@ -47,7 +47,11 @@
 //! letting the answer choose after the fold (50.6 MHz, 11,863 LUT4 against 7,880), and rescaling both
 //! operands of [`Hull2`] by their own clamped differences instead of swapping them (50.1 MHz, 8,918
 //! LUT4). Hence the clock between the answer and the fold (the report stage of
-//! `golden::bundle::stream`): the loop now starts and ends at the gatherer's own registers.
+//! `golden::bundle::stream`). With the answer and the choice registered (the fold's operand still
+//! chosen by two multiplexers behind the answer's registers) the 5-clock processor reached 63.6 MHz,
+//! from the registered answer through the choice and the hull into the result registers; so the choice
+//! moved in front of the register (`op`), and only the hull and the accumulator's multiplexers are left
+//! in the loop.
 
 use crate::cut::Line;
 pub use golden::bundle::rebound::J_BITS;
@@ -454,11 +458,12 @@ impl<const N: usize> Logic for OrderKeys<N> {
 ///
 /// # Inputs
 /// - `clock`, `rst` (synchronous, registered as the answer is: the bundle being gathered is dropped
-///   after the clock's answer is folded; the result registers keep their contents, except that a job
+///   once the clock's answer is folded, in the next clock; the result registers keep their contents, except that a job
 ///   whose last answer comes in the `rst` clock still loads them, as the control's report stage and
 ///   the model do);
 /// - `a_*`, `b_*`: the rays entering the pair in this clock (rays A and B of a ray pair);
-/// - the pair's answer in this clock, from the control (registered here, folded in the next clock):
+/// - the pair's answer in this clock, from the control (it chooses the bundle to fold into a register,
+///   folded in the next clock):
 ///   `rays_back` (a ray pair's), `keep_a`, `keep_b` (ray A, ray B present and may hit), `last_back` (a
 ///   job's last pair's), `bundle_done` (a bundle's that reports without a split).
 ///
@@ -497,9 +502,11 @@ pub struct ReboundAcc<const G: usize, const D: usize, const T: usize> {
     pb: ItemLine<G, D, T>,
     pab: ItemLine<G, D, T>,
     hull_ab: Hull2<G, D, T>,
-    /// The bundle to fold: B's alone or the pair's hull (`kept`), then A's when B is not kept (`fold`).
+    /// The bundle to fold: B's alone or the pair's hull (`kept`), then A's when B is not kept (`fold`),
+    /// chosen by the answer and registered (`op`), folded in the next clock.
     kept: ItemSel<G, D, T>,
     fold: ItemSel<G, D, T>,
+    op: ItemLine<G, D, T>,
     /// The accumulator with this clock's bundle folded in, and the accumulator's next value.
     hull_acc: Hull2<G, D, T>,
     folded: ItemSel<G, D, T>,
@@ -509,10 +516,9 @@ pub struct ReboundAcc<const G: usize, const D: usize, const T: usize> {
     res_next: ItemSel<G, D, T>,
     res: ItemLine<G, D, T>,
     res_valid: DFF<Bit>,
-    /// The pair's answer and `rst`, registered: the gatherer works a clock behind the control.
-    rays_back_q: DFF<Bit>,
-    keep_a_q: DFF<Bit>,
-    keep_b_q: DFF<Bit>,
+    /// The pair's answer (`op` holds a kept ray or pair) and `rst`, registered: the gatherer folds a
+    /// clock behind the control.
+    kept_q: DFF<Bit>,
     last_back_q: DFF<Bit>,
     bundle_done_q: DFF<Bit>,
     rst_q: DFF<Bit>,
@@ -545,14 +551,15 @@ impl<const G: usize, const D: usize, const T: usize> ReboundAcc<G, D, T> {
             rb_d: Default::default(),
             rb_t: Default::default(),
             rb_j: Default::default(),
-            la: ItemLine::new(latency),
-            lb: ItemLine::new(latency),
+            la: ItemLine::new(latency - 1),
+            lb: ItemLine::new(latency - 1),
             pa: ItemLine::new(1),
             pb: ItemLine::new(1),
             pab: ItemLine::new(1),
             hull_ab: Default::default(),
             kept: Default::default(),
             fold: Default::default(),
+            op: ItemLine::new(1),
             hull_acc: Default::default(),
             folded: Default::default(),
             acc_next: Default::default(),
@@ -561,9 +568,7 @@ impl<const G: usize, const D: usize, const T: usize> ReboundAcc<G, D, T> {
             res_next: Default::default(),
             res: ItemLine::new(1),
             res_valid: Default::default(),
-            rays_back_q: Default::default(),
-            keep_a_q: Default::default(),
-            keep_b_q: Default::default(),
+            kept_q: Default::default(),
             last_back_q: Default::default(),
             bundle_done_q: Default::default(),
             rst_q: Default::default(),
@@ -582,27 +587,24 @@ impl<const G: usize, const D: usize, const T: usize> Logic for ReboundAcc<G, D, 
         self.pb.clock.next = self.clock.val();
         self.pab.clock.next = self.clock.val();
         self.acc.clock.next = self.clock.val();
+        self.op.clock.next = self.clock.val();
         self.res.clock.next = self.clock.val();
         dff_setup!(
             self,
             clock,
             acc_valid,
             res_valid,
-            rays_back_q,
-            keep_a_q,
-            keep_b_q,
+            kept_q,
             last_back_q,
             bundle_done_q,
             rst_q
         );
-        self.rays_back_q.d.next = self.rays_back.val();
-        self.keep_a_q.d.next = self.keep_a.val();
-        self.keep_b_q.d.next = self.keep_b.val();
+        self.kept_q.d.next = self.rays_back.val() & (self.keep_a.val() | self.keep_b.val());
         self.last_back_q.d.next = self.last_back.val();
         self.bundle_done_q.d.next = self.bundle_done.val();
         self.rst_q.d.next = self.rst.val();
 
-        // Beside the pair; the pair's hull formed in the answer's clock, folded in the next.
+        // Beside the pair; the pair's hull formed one clock before the answer.
         for i in 0..6 {
             self.la.d_o[i].next = self.a_o[i].val();
             self.la.d_d[i].next = self.a_d[i].val();
@@ -636,13 +638,13 @@ impl<const G: usize, const D: usize, const T: usize> Logic for ReboundAcc<G, D, 
         self.hull_ab.y_j.next = self.lb.q_j.val();
         self.pab.d_j.next = self.hull_ab.h_j.val();
 
-        // What this clock folds (the answer of the last clock): both rays (their hull), or the one kept.
-        self.any_kept.next =
-            self.rays_back_q.q.val() & (self.keep_a_q.q.val() | self.keep_b_q.q.val());
+        // What the answer keeps, registered: both rays (their hull), or the one kept; folded in the next
+        // clock.
+        self.any_kept.next = self.kept_q.q.val();
         self.valid_next.next = self.acc_valid.q.val() | self.any_kept.val();
-        self.kept.sel.next = self.keep_a_q.q.val();
+        self.kept.sel.next = self.keep_a.val();
         self.kept.clear.next = false;
-        self.fold.sel.next = self.keep_b_q.q.val();
+        self.fold.sel.next = self.keep_b.val();
         self.fold.clear.next = false;
         // Into the accumulator (or as the first bundle of the job), and the results.
         self.folded.sel.next = self.acc_valid.q.val();
@@ -663,12 +665,14 @@ impl<const G: usize, const D: usize, const T: usize> Logic for ReboundAcc<G, D, 
             self.fold.b_d[i].next = self.pa.q_d[i].val();
             self.hull_acc.x_o[i].next = self.acc.q_o[i].val();
             self.hull_acc.x_d[i].next = self.acc.q_d[i].val();
-            self.hull_acc.y_o[i].next = self.fold.y_o[i].val();
-            self.hull_acc.y_d[i].next = self.fold.y_d[i].val();
+            self.op.d_o[i].next = self.fold.y_o[i].val();
+            self.hull_acc.y_o[i].next = self.op.q_o[i].val();
+            self.op.d_d[i].next = self.fold.y_d[i].val();
+            self.hull_acc.y_d[i].next = self.op.q_d[i].val();
             self.folded.a_o[i].next = self.hull_acc.h_o[i].val();
             self.folded.a_d[i].next = self.hull_acc.h_d[i].val();
-            self.folded.b_o[i].next = self.fold.y_o[i].val();
-            self.folded.b_d[i].next = self.fold.y_d[i].val();
+            self.folded.b_o[i].next = self.op.q_o[i].val();
+            self.folded.b_d[i].next = self.op.q_d[i].val();
             self.acc_next.a_o[i].next = self.folded.y_o[i].val();
             self.acc_next.a_d[i].next = self.folded.y_d[i].val();
             self.acc_next.b_o[i].next = self.acc.q_o[i].val();
@@ -690,9 +694,10 @@ impl<const G: usize, const D: usize, const T: usize> Logic for ReboundAcc<G, D, 
             self.fold.a_t[i].next = self.kept.y_t[i].val();
             self.fold.b_t[i].next = self.pa.q_t[i].val();
             self.hull_acc.x_t[i].next = self.acc.q_t[i].val();
-            self.hull_acc.y_t[i].next = self.fold.y_t[i].val();
+            self.op.d_t[i].next = self.fold.y_t[i].val();
+            self.hull_acc.y_t[i].next = self.op.q_t[i].val();
             self.folded.a_t[i].next = self.hull_acc.h_t[i].val();
-            self.folded.b_t[i].next = self.fold.y_t[i].val();
+            self.folded.b_t[i].next = self.op.q_t[i].val();
             self.acc_next.a_t[i].next = self.folded.y_t[i].val();
             self.acc_next.b_t[i].next = self.acc.q_t[i].val();
             self.acc.d_t[i].next = self.acc_next.y_t[i].val();
@@ -706,9 +711,10 @@ impl<const G: usize, const D: usize, const T: usize> Logic for ReboundAcc<G, D, 
         self.fold.a_j.next = self.kept.y_j.val();
         self.fold.b_j.next = self.pa.q_j.val();
         self.hull_acc.x_j.next = self.acc.q_j.val();
-        self.hull_acc.y_j.next = self.fold.y_j.val();
+        self.op.d_j.next = self.fold.y_j.val();
+        self.hull_acc.y_j.next = self.op.q_j.val();
         self.folded.a_j.next = self.hull_acc.h_j.val();
-        self.folded.b_j.next = self.fold.y_j.val();
+        self.folded.b_j.next = self.op.q_j.val();
         self.acc_next.a_j.next = self.folded.y_j.val();
         self.acc_next.b_j.next = self.acc.q_j.val();
         self.acc.d_j.next = self.acc_next.y_j.val();
