@@ -142,7 +142,7 @@ enum Cmd {
     BundleCampaign(bundle_cmd::CampaignArgs),
     /// Scene job streams through the streaming results processor's RTL (rust-hdl, checked clock by
     /// clock): clocks, pair-input utilisation against the model's busy-pair count, clocks per job
-    /// (writes bundle_stream.csv and bundle_stream.md).
+    /// (writes bundle_stream_<format>.csv and .md, the format as bundle-scenes names it: b12, e5m10).
     BundleStream(stream_cmd::Args),
     /// The smallest fixed-point and float formats whose slab tester meets a budget of extra tester cycles
     /// on each scene and ray set, their area and latency against fp32, and their Verilog (writes

@@ -48,7 +48,7 @@ pub struct Args {
     rebound: String,
 }
 
-/// CSV header of `bundle_stream.csv`.
+/// CSV header of `bundle_stream_<format>.csv`.
 pub const CSV_HEADER: &str = "scene,rays,bundling,format,rebound,bundles,jobs,decided,clocks,busy_clocks,model_pair_cycles,utilisation,clocks_per_job,decided_stream_jobs,decided_stream_clocks,decided_tests_per_clock,one_job_clocks,speedup_vs_one_job";
 
 /// The closed-loop and the decided-only runs of `trees`, on a thread with a big stack (the processor's
@@ -66,13 +66,16 @@ fn replay<S: BundleStreamIo>(
     })
 }
 
-/// Runs the measurement; returns the markdown table, writes `bundle_stream.csv` and `.md` under `out`.
+/// Runs the measurement; returns the markdown table, writes `bundle_stream_<format>.csv` and `.md`
+/// under `out`, the format named as `rtu bundle-scenes` names it (`b12`, `e5m10`), so that runs of
+/// different formats sit side by side.
 pub fn run(a: &Args, out: &Path) -> Result<String, String> {
     if let Ok(f) = FloatFormat::parse(&a.format) {
+        let name = f.name();
         return match f {
-            FloatFormat::FP32 => measure(a, &f, out, replay::<rtl::BundleStreamFp32>),
-            FloatFormat::BF16 => measure(a, &f, out, replay::<rtl::BundleStreamBf16>),
-            FloatFormat::FP16 => measure(a, &f, out, replay::<rtl::BundleStreamFp16>),
+            FloatFormat::FP32 => measure(a, &f, &name, out, replay::<rtl::BundleStreamFp32>),
+            FloatFormat::BF16 => measure(a, &f, &name, out, replay::<rtl::BundleStreamBf16>),
+            FloatFormat::FP16 => measure(a, &f, &name, out, replay::<rtl::BundleStreamFp16>),
             _ => Err(format!(
                 "--format {}: the float processor is built in fp32, bf16 and fp16",
                 a.format
@@ -90,17 +93,19 @@ pub fn run(a: &Args, out: &Path) -> Result<String, String> {
                 a.format
             )
         })?;
+    let name = ["b8", "b12", "b16"][preset];
     match preset {
-        0 => measure(a, &bf, out, replay::<rtl::BundleStreamB8>),
-        1 => measure(a, &bf, out, replay::<rtl::BundleStreamB12>),
-        _ => measure(a, &bf, out, replay::<rtl::BundleStreamB16>),
+        0 => measure(a, &bf, name, out, replay::<rtl::BundleStreamB8>),
+        1 => measure(a, &bf, name, out, replay::<rtl::BundleStreamB12>),
+        _ => measure(a, &bf, name, out, replay::<rtl::BundleStreamB16>),
     }
 }
 
-/// [`run`] on the processor over `dp`, whose job trees `replay` runs.
+/// [`run`] on the processor over `dp` (format `name`), whose job trees `replay` runs.
 fn measure<P: SceneDatapath>(
     a: &Args,
     dp: &P,
+    name: &str,
     out: &Path,
     replay: impl Fn(&P, &JobTrees<P>, &ProgressBar) -> Result<(StreamRun, StreamRun), String>,
 ) -> Result<String, String> {
@@ -134,8 +139,8 @@ fn measure<P: SceneDatapath>(
     let mut table = String::from(
         "| scene | rays | bundling | rebound | bundles | jobs | decided | clocks | pair busy (= model) | utilisation | clocks / job | decided jobs alone: tests / clock | one-job processor: clocks (x) |\n|---|---|---|---|---|---|---|---|---|---|---|---|---|\n",
     );
-    for name in &names {
-        let sc = crate::sweep_cmd::load_scene(name, a.seed)?;
+    for scene in &names {
+        let sc = crate::sweep_cmd::load_scene(scene, a.seed)?;
         let mut streams = vec![];
         for &rb in &rules {
             let s = scene_streams(
@@ -147,7 +152,7 @@ fn measure<P: SceneDatapath>(
                 dp,
                 rb,
             )
-            .map_err(|e| format!("{name}: {e}"))?;
+            .map_err(|e| format!("{scene}: {e}"))?;
             streams.extend(s.into_iter().map(|s| (rb, s)));
         }
         // Each ray set with either rule, side by side.
@@ -159,9 +164,9 @@ fn measure<P: SceneDatapath>(
                 ProgressStyle::with_template("{msg:40} {bar:30} {pos}/{len} eta {eta}")
                     .expect("template"),
             );
-            pb.set_message(format!("{name} {set} {bundling} {rule}"));
+            pb.set_message(format!("{scene} {set} {bundling} {rule}"));
             let (r, d) =
-                replay(dp, trees, &pb).map_err(|e| format!("{name} {set} {bundling}: {e}"))?;
+                replay(dp, trees, &pb).map_err(|e| format!("{scene} {set} {bundling}: {e}"))?;
             if pb.is_hidden() {
                 eprintln!("{} done", pb.message());
             }
@@ -177,8 +182,7 @@ fn measure<P: SceneDatapath>(
             };
             let _ = writeln!(
                 csv,
-                "{name},{set},{bundling},{},{rule},{},{},{},{},{},{},{:.4},{:.4},{},{},{:.4},{one_csv}",
-                a.format,
+                "{scene},{set},{bundling},{name},{rule},{},{},{},{},{},{},{:.4},{:.4},{},{},{:.4},{one_csv}",
                 r.bundles,
                 r.jobs,
                 r.decided,
@@ -193,7 +197,7 @@ fn measure<P: SceneDatapath>(
             );
             let _ = writeln!(
                 table,
-                "| {name} | {set} | {bundling} | {rule} | {} | {} | {} | {} | {} | {:.3} | {:.2} | {:.3} | {one_md} |",
+                "| {scene} | {set} | {bundling} | {rule} | {} | {} | {} | {} | {} | {:.3} | {:.2} | {:.3} | {one_md} |",
                 r.bundles,
                 r.jobs,
                 r.decided,
@@ -206,7 +210,7 @@ fn measure<P: SceneDatapath>(
         }
     }
     std::fs::create_dir_all(out).map_err(|e| format!("{}: {e}", out.display()))?;
-    crate::out_file::write_file(&out.join("bundle_stream.csv"), &csv)?;
-    crate::out_file::write_file(&out.join("bundle_stream.md"), &table)?;
+    crate::out_file::write_file(&out.join(format!("bundle_stream_{name}.csv")), &csv)?;
+    crate::out_file::write_file(&out.join(format!("bundle_stream_{name}.md")), &table)?;
     Ok(table)
 }
