@@ -75,12 +75,6 @@ impl BundleGen {
         }
     }
 
-    /// `true` with probability `num / den`, drawn from the generator's own stream (for a caller's
-    /// choice about a case, so that its stimulus stays a function of the seed).
-    pub fn chance(&mut self, num: u32, den: u32) -> bool {
-        self.rng.gen_ratio(num, den)
-    }
-
     fn in_range(&mut self, lo: DVec3, hi: DVec3) -> DVec3 {
         DVec3::new(
             self.rng.gen_range(lo.x..=hi.x),
