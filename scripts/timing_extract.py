@@ -12,7 +12,7 @@ iCE40 (a DEVICE starting with iCE40) SB_LUT4, SB_CARRY, the SB_DFF* flip-flops, 
 wrapper's cells (one flip-flop per core input and output bit, about one LUT4 per output bit) are
 counted separately and checked against the bits the wrapper was written with.
 The critical path is the clock-to-clock one; its start and end cells are named by the register they
-hold: the core's register by its plain name (rtl::export::plain_name), its path in the core
+hold: the core's register by its plain name (rtl::verilog::plain_name), its path in the core
 (`exit_q2_0`, the instance of the child module `<module>_exit_q2_0`; `exit_q2_0_r`, the register `r`
 of a cut point (`rtl::cut::Cut`); `mul_entry_2.p_q`, a register `p_q` inside a child; no `core.` prefix, no bit
 index), found from the flip-flop's

@@ -64,16 +64,6 @@ impl<T: Synth> Logic for Cut<T> {
     }
 }
 
-/// The module-name suffix of a block's configuration with cut points `cuts`: its entry in the block's
-/// list of built configurations `depths` (`(cuts, suffix)`, e.g. `("_p13")`, none for the default), or
-/// `_c` and the cut mask in two hex digits for a configuration the list does not name.
-pub fn depth_suffix(depths: &[(usize, &str)], cuts: usize) -> String {
-    match depths.iter().find(|(c, _)| *c == cuts) {
-        Some((_, s)) => s.to_string(),
-        None => format!("_c{cuts:02x}"),
-    }
-}
-
 /// The most clocks a [`Wait`] delays.
 pub const MAX_WAIT: usize = 10;
 

@@ -8,155 +8,24 @@
 //! (`scripts/synth plane_`): the table option `PlaneFix` over b8, b12 and b16 and the fraction option
 //! `PlaneFrac` over b12 and b16 with 1 and 4 planes, and the float `PlaneFloat` with 1 plane.
 
+use crate::bundle::pair_fix::{BundleFixIo, BUNDLE_FIX_LATENCY};
+use crate::bundle::pair_float::BundleFloatIo;
+use crate::bundle::stream::BundleStreamIo;
+use crate::names;
+use crate::verilog::verilog_named;
+use golden::bundle::fix::BundleFixFormat;
+use golden::bundle::stream::decided_latency;
 use golden::format::fixed::FixFormat;
+use golden::format::float::FloatFormat;
 use golden::plane::fix::CullFixFormat;
 use golden::plane::float::CullFloatFormat;
 use rust_hdl::prelude::*;
 use std::path::{Path, PathBuf};
 
-/// Verilog of a block, with its top module (and children) renamed to `name` and every identifier made
-/// plain ([`plain_verilog`]).
-pub fn verilog_named<B: Block>(uut: &mut B, name: &str) -> String {
-    uut.connect_all();
-    let v = generate_verilog(uut);
-    let v = v
-        .replace("module top(", &format!("module {name}("))
-        .replace("module top$", &format!("module {name}$"))
-        .replace("\ntop$", &format!("\n{name}$"))
-        .replace(" top$", &format!(" {name}$"));
-    plain_verilog(&v).unwrap_or_else(|e| panic!("exporting {name}: {e}"))
-}
-
-/// The plain name of a rust-hdl signal path: every `$` (rust-hdl's separator of an array index and of a
-/// child's field, as in `ray_o_lo$1` or `axis$0$e`) becomes `_` (`ray_o_lo_1`, `axis_0_e`). Element `k`
-/// of a rust-hdl array port `ray_o_lo[k]` is the Verilog and VCD port `ray_o_lo_k`; over the axes, 0, 1
-/// and 2 are x, y and z. The exported Verilog, the VCDs and the datasheets all use these names, legal
-/// identifiers in Verilog, VHDL, cocotb and Tcl constraint files alike.
-pub fn plain_name(path: &str) -> String {
-    path.replace('$', "_")
-}
-
-/// A port name split into the rust-hdl field and the array index: `ray_o_lo_1` is `("ray_o_lo",
-/// Some(1))`, `ray_t_min` is `("ray_t_min", None)`. Unambiguous for the exported modules' ports, since
-/// [`plain_verilog`] refuses a module whose scalar port ends in `_` and digits.
-pub fn split_port(port: &str) -> (&str, Option<usize>) {
-    match port.rsplit_once('_') {
-        Some((base, idx))
-            if !base.is_empty() && !idx.is_empty() && idx.bytes().all(|c| c.is_ascii_digit()) =>
-        {
-            match idx.parse() {
-                Ok(i) => (base, Some(i)),
-                Err(_) => (port, None),
-            }
-        }
-        _ => (port, None),
-    }
-}
-
-/// `v` (Verilog as rust-hdl writes it) with every identifier that holds a `$` renamed by
-/// [`plain_name`]; system functions (`$signed`) are left alone. An error when a new name would
-/// collide with another identifier of the same module, or when a scalar port's name of the top module
-/// would read as an array element.
-pub fn plain_verilog(v: &str) -> Result<String, String> {
-    use std::collections::{BTreeMap, BTreeSet};
-    let mut out = String::with_capacity(v.len());
-    let mut plain: BTreeSet<&str> = BTreeSet::new();
-    let mut renamed: BTreeMap<String, &str> = BTreeMap::new();
-    let b = v.as_bytes();
-    let mut i = 0;
-    while i < b.len() {
-        let c = b[i];
-        if c == b'"' {
-            // A string literal: copied as it is.
-            let end = v[i + 1..].find('"').map(|e| i + 2 + e).unwrap_or(b.len());
-            out += &v[i..end];
-            i = end;
-        } else if c.is_ascii_alphabetic() || c == b'_' {
-            let start = i;
-            while i < b.len() && (b[i].is_ascii_alphanumeric() || b[i] == b'_' || b[i] == b'$') {
-                i += 1;
-            }
-            let id = &v[start..i];
-            if id == "module" {
-                // A new module: a new scope for the collision check (module names are renamed the
-                // same way everywhere, so they cannot collide with one another unless identical).
-                check_scope(&plain, &renamed)?;
-                plain.clear();
-                renamed.clear();
-            }
-            if id.contains('$') {
-                let p = plain_name(id);
-                out += &p;
-                if let Some(other) = renamed.insert(p.clone(), id) {
-                    if other != id {
-                        return Err(format!("{other} and {id} would both be named {p}"));
-                    }
-                }
-            } else {
-                out += id;
-                plain.insert(id);
-            }
-        } else if c.is_ascii_digit() {
-            // A number (or the size of a sized literal): never an identifier.
-            let start = i;
-            while i < b.len() && b[i].is_ascii_alphanumeric() {
-                i += 1;
-            }
-            out += &v[start..i];
-        } else {
-            let ch = v[i..].chars().next().expect("in bounds");
-            out.push(ch);
-            i += ch.len_utf8();
-        }
-    }
-    check_scope(&plain, &renamed)?;
-    // The top module's ports: a scalar must not look like an element of an array port.
-    if let Some(h) = v.find("module ") {
-        let header = &v[h..];
-        let header = &header[..header.find(')').unwrap_or(header.len())];
-        if let Some((_, list)) = header.split_once('(') {
-            for port in list.split(',').map(str::trim) {
-                if !port.contains('$') && split_port(port).1.is_some() {
-                    return Err(format!(
-                        "scalar port {port} ends in _ and digits, as an array element's name does"
-                    ));
-                }
-            }
-        }
-    }
-    Ok(out)
-}
-
-/// The collision check of one module's identifiers: no renamed identifier may equal a plain one.
-fn check_scope(
-    plain: &std::collections::BTreeSet<&str>,
-    renamed: &std::collections::BTreeMap<String, &str>,
-) -> Result<(), String> {
-    match renamed.iter().find(|(p, _)| plain.contains(p.as_str())) {
-        Some((p, id)) => Err(format!(
-            "{id} would be named {p}, which is already an identifier of the same module"
-        )),
-        None => Ok(()),
-    }
-}
-
-/// Module name of the default (4-clock) fixed slab tester for a format.
-pub fn slab_fix_module(fmt: &FixFormat) -> String {
-    slab_fix_module_cuts(fmt, crate::slab::fix::SLAB_FIX_CUTS)
-}
-
-/// Module name of the fixed slab tester for a format and cut points: the format's name, then the
-/// suffix of the configuration in [`crate::slab::fix::SLAB_FIX_DEPTHS`] (`_p6` for the 6-clock
-/// tester), or `_c` and the cut mask in hex for another.
-pub fn slab_fix_module_cuts(fmt: &FixFormat, cuts: usize) -> String {
-    let suffix = crate::cut::depth_suffix(&crate::slab::fix::SLAB_FIX_DEPTHS, cuts);
-    format!("slab_fix_{}{suffix}", fmt.name())
-}
-
 /// Verilog of the fixed slab tester `S` for `fmt`, named after the format and the block's cut points.
 pub fn slab_fix_verilog_of<S: crate::slab::fix::SlabFixIo + Block>(fmt: &FixFormat) -> String {
     let mut uut = S::for_format(fmt);
-    verilog_named(&mut uut, &slab_fix_module_cuts(fmt, S::CUTS))
+    verilog_named(&mut uut, &names::slab_fix_module_cuts(fmt, S::CUTS))
 }
 
 /// Verilog of the default fixed slab tester for a preset format.
@@ -168,7 +37,7 @@ pub fn slab_fix_verilog(fmt: &FixFormat) -> Result<String, String> {
 pub fn slab_fix_deep_verilog() -> Vec<(String, String, usize)> {
     fn one<S: crate::slab::fix::SlabFixIo + Block>(fmt: FixFormat) -> (String, String, usize) {
         (
-            slab_fix_module_cuts(&fmt, S::CUTS),
+            names::slab_fix_module_cuts(&fmt, S::CUTS),
             slab_fix_verilog_of::<S>(&fmt),
             S::LATENCY,
         )
@@ -180,23 +49,13 @@ pub fn slab_fix_deep_verilog() -> Vec<(String, String, usize)> {
     ]
 }
 
-/// Module name of the default (9-clock) float slab tester for a format, e.g. `slab_float_e8m23`.
-pub fn slab_float_module(f: &golden::format::float::FloatFormat) -> String {
-    slab_float_module_cuts(f, 0)
-}
-
-/// Module name of the float slab tester for a format and cut points: the format's name, then the
-/// suffix of the configuration in [`crate::slab::float::SLAB_FLOAT_DEPTHS`] (`_p13` for the 13-clock
-/// tester), or `_c` and the cut mask in hex for another.
-pub fn slab_float_module_cuts(f: &golden::format::float::FloatFormat, cuts: usize) -> String {
-    let suffix = crate::cut::depth_suffix(&crate::slab::float::SLAB_FLOAT_DEPTHS, cuts);
-    format!("slab_float_{}{suffix}", f.name())
-}
-
 /// Verilog of the float slab tester `S`, named after its format and cut points.
 pub fn slab_float_verilog_of<S: crate::slab::float::SlabFloatIo + Block>() -> String {
     let mut uut = S::make();
-    verilog_named(&mut uut, &slab_float_module_cuts(&S::format(), S::CUTS))
+    verilog_named(
+        &mut uut,
+        &names::slab_float_module_cuts(&S::format(), S::CUTS),
+    )
 }
 
 /// Verilog of the default float slab tester for an instantiated format.
@@ -208,7 +67,7 @@ pub fn slab_float_verilog(f: &golden::format::float::FloatFormat) -> Result<Stri
 pub fn slab_float_deep_verilog() -> Vec<(String, String, usize)> {
     fn one<S: crate::slab::float::SlabFloatIo + Block>() -> (String, String, usize) {
         (
-            slab_float_module_cuts(&S::format(), S::CUTS),
+            names::slab_float_module_cuts(&S::format(), S::CUTS),
             slab_float_verilog_of::<S>(),
             S::LATENCY,
         )
@@ -232,7 +91,7 @@ pub fn slab_fix_verilog_ladder(fmt: &FixFormat) -> Result<String, String> {
 pub fn slab_fix_ladder_default(fmt: &FixFormat) -> Result<(String, String, usize), String> {
     crate::with_slab_fix_ladder!(fmt, S, {
         (
-            slab_fix_module_cuts(fmt, <S as crate::slab::fix::SlabFixIo>::CUTS),
+            names::slab_fix_module_cuts(fmt, <S as crate::slab::fix::SlabFixIo>::CUTS),
             slab_fix_verilog_of::<S>(fmt),
             <S as crate::io::SlabIo>::LATENCY,
         )
@@ -246,7 +105,7 @@ pub fn slab_float_ladder_default(
 ) -> Result<(String, String, usize), String> {
     crate::with_slab_float_ladder!(f, S, {
         (
-            slab_float_module_cuts(f, <S as crate::slab::float::SlabFloatIo>::CUTS),
+            names::slab_float_module_cuts(f, <S as crate::slab::float::SlabFloatIo>::CUTS),
             slab_float_verilog_of::<S>(),
             <S as crate::io::SlabIo>::LATENCY,
         )
@@ -273,7 +132,7 @@ pub fn export_all(dir: &Path) -> std::io::Result<Vec<PathBuf>> {
     };
     for fmt in FixFormat::presets() {
         write(
-            slab_fix_module(&fmt),
+            names::slab_fix_module(&fmt),
             slab_fix_verilog(&fmt).expect("presets are instantiated"),
             crate::SLAB_FIX_LATENCY,
         )?;
@@ -283,7 +142,7 @@ pub fn export_all(dir: &Path) -> std::io::Result<Vec<PathBuf>> {
     }
     for f in crate::SLAB_FLOAT_FORMATS {
         write(
-            slab_float_module(&f),
+            names::slab_float_module(&f),
             slab_float_verilog(&f).expect("instantiated"),
             crate::SLAB_FLOAT_LATENCY,
         )?;
@@ -295,29 +154,29 @@ pub fn export_all(dir: &Path) -> std::io::Result<Vec<PathBuf>> {
         write(module, v, lat)?;
     }
     // The fixed bundle pair over the presets.
-    for (module, v, lat) in crate::bundle::pair_fix::bundle_fix_verilog() {
+    for (module, v, lat) in bundle_fix_verilog() {
         write(module, v, lat)?;
     }
     // The bundle results processor over b12 and b16 (latency: clocks of a decided job).
-    for (module, v, lat) in crate::bundle::split::bundle_split_verilog() {
+    for (module, v, lat) in bundle_split_verilog() {
         write(module, v, lat)?;
     }
     // The streaming results processor over b12 and b16 (latency: clocks of a decided job).
-    for (module, v, lat) in crate::bundle::stream::bundle_stream_verilog() {
+    for (module, v, lat) in bundle_stream_verilog() {
         write(module, v, lat)?;
     }
     for f in crate::BUNDLE_FLOAT_FORMATS {
         write(
-            crate::bundle::pair_float::bundle_float_module(&f),
-            crate::bundle::pair_float::bundle_float_verilog(&f).expect("instantiated"),
+            names::bundle_float_module(&f),
+            bundle_float_verilog(&f).expect("instantiated"),
             crate::bundle::pair_float::BUNDLE_FLOAT_LATENCY,
         )?;
     }
-    for (module, v, lat) in crate::bundle::pair_float::bundle_float_deep_verilog() {
+    for (module, v, lat) in bundle_float_deep_verilog() {
         write(module, v, lat)?;
     }
     // The streaming results processor around the float pair (latency: clocks of a decided job).
-    for (module, v, lat) in crate::bundle::stream_float::bundle_stream_float_verilog() {
+    for (module, v, lat) in bundle_stream_float_verilog() {
         write(module, v, lat)?;
     }
     std::fs::write(dir.join("latency.csv"), latency)?;
@@ -411,18 +270,12 @@ impl Exported {
             Family::PlaneFix { .. } | Family::PlaneFrac { .. } | Family::PlaneFloat { .. } => {
                 pick(plane_verilog())
             }
-            Family::BundleFix { .. } => pick(crate::bundle::pair_fix::bundle_fix_verilog()),
-            Family::BundleFloat { f, cuts: 0 } => {
-                crate::bundle::pair_float::bundle_float_verilog(&f).expect("instantiated")
-            }
-            Family::BundleFloat { .. } => {
-                pick(crate::bundle::pair_float::bundle_float_deep_verilog())
-            }
-            Family::BundleSplit { .. } => pick(crate::bundle::split::bundle_split_verilog()),
-            Family::BundleStream { .. } => pick(crate::bundle::stream::bundle_stream_verilog()),
-            Family::BundleStreamFloat { .. } => {
-                pick(crate::bundle::stream_float::bundle_stream_float_verilog())
-            }
+            Family::BundleFix { .. } => pick(bundle_fix_verilog()),
+            Family::BundleFloat { f, cuts: 0 } => bundle_float_verilog(&f).expect("instantiated"),
+            Family::BundleFloat { .. } => pick(bundle_float_deep_verilog()),
+            Family::BundleSplit { .. } => pick(bundle_split_verilog()),
+            Family::BundleStream { .. } => pick(bundle_stream_verilog()),
+            Family::BundleStreamFloat { .. } => pick(bundle_stream_float_verilog()),
         }
     }
 }
@@ -442,7 +295,7 @@ pub fn catalog() -> Vec<Exported> {
     };
     for fmt in FixFormat::presets() {
         add(
-            slab_fix_module(&fmt),
+            names::slab_fix_module(&fmt),
             crate::SLAB_FIX_LATENCY,
             Family::SlabFix {
                 fmt,
@@ -452,7 +305,7 @@ pub fn catalog() -> Vec<Exported> {
     }
     for fmt in FixFormat::presets() {
         add(
-            slab_fix_module_cuts(&fmt, SLAB_FIX_CUTS_DEEP),
+            names::slab_fix_module_cuts(&fmt, SLAB_FIX_CUTS_DEEP),
             crate::slab::fix::slab_fix_latency(SLAB_FIX_CUTS_DEEP),
             Family::SlabFix {
                 fmt,
@@ -462,14 +315,14 @@ pub fn catalog() -> Vec<Exported> {
     }
     for f in crate::SLAB_FLOAT_FORMATS {
         add(
-            slab_float_module(&f),
+            names::slab_float_module(&f),
             crate::SLAB_FLOAT_LATENCY,
             Family::SlabFloat { f, cuts: 0 },
         );
     }
     for f in crate::SLAB_FLOAT_FORMATS {
         add(
-            slab_float_module_cuts(&f, SLAB_FLOAT_CUTS_DEEP),
+            names::slab_float_module_cuts(&f, SLAB_FLOAT_CUTS_DEEP),
             crate::slab::float::slab_float_latency(SLAB_FLOAT_CUTS_DEEP),
             Family::SlabFloat {
                 f,
@@ -483,7 +336,7 @@ pub fn catalog() -> Vec<Exported> {
             for k in [1, 4] {
                 let (s, p, _) = crate::plane::fix::PLANE_FIX_DEPTHS[deep as usize];
                 add(
-                    plane_fix_module_cuts(&cf, k, s, p),
+                    names::plane_fix_module_cuts(&cf, k, s, p),
                     crate::plane::fix::plane_fix_latency(s, p),
                     Family::PlaneFix { cf, k, deep },
                 );
@@ -493,17 +346,17 @@ pub fn catalog() -> Vec<Exported> {
     for cf in &presets[1..] {
         for k in [1, 4] {
             add(
-                plane_frac_module(cf, k),
+                names::plane_frac_module(cf, k),
                 crate::plane::quot::PLANE_FRAC_LATENCY,
                 Family::PlaneFrac { cf: *cf, k },
             );
         }
     }
-    for (f, k) in crate::plane::float_export::PLANE_FLOAT_CONFIGS {
+    for (f, k) in crate::PLANE_FLOAT_CONFIGS {
         if k == 1 {
             let cf = CullFloatFormat::over(f);
             add(
-                crate::plane::float_export::plane_float_module(&cf, k),
+                names::plane_float_module(&cf, k),
                 crate::PLANE_FLOAT_LATENCY,
                 Family::PlaneFloat { cf, k },
             );
@@ -512,7 +365,7 @@ pub fn catalog() -> Vec<Exported> {
     for (cuts, _) in crate::bundle::pair_fix::BUNDLE_FIX_DEPTHS {
         for bf in golden::bundle::fix::BundleFixFormat::presets() {
             add(
-                crate::bundle::pair_fix::bundle_fix_module_cuts(&bf, cuts),
+                names::bundle_fix_module_cuts(&bf, cuts),
                 crate::bundle::pair_fix::bundle_fix_latency(cuts),
                 Family::BundleFix { bf, cuts },
             );
@@ -520,14 +373,14 @@ pub fn catalog() -> Vec<Exported> {
     }
     for bf in &golden::bundle::fix::BundleFixFormat::presets()[1..] {
         add(
-            crate::bundle::split::bundle_split_module(bf),
+            names::bundle_split_module(bf),
             crate::bundle::pair_fix::BUNDLE_FIX_LATENCY + 1,
             Family::BundleSplit { bf: *bf },
         );
     }
     for (bf, cuts) in crate::bundle::stream::bundle_stream_configs() {
         add(
-            crate::bundle::stream::bundle_stream_module_cuts(&bf, cuts),
+            names::bundle_stream_module_cuts(&bf, cuts),
             golden::bundle::stream::decided_latency(crate::bundle::pair_fix::bundle_fix_latency(
                 cuts,
             )),
@@ -537,7 +390,7 @@ pub fn catalog() -> Vec<Exported> {
     for (cuts, _) in crate::bundle::pair_float::BUNDLE_FLOAT_DEPTHS {
         for f in crate::BUNDLE_FLOAT_FORMATS {
             add(
-                crate::bundle::pair_float::bundle_float_module_cuts(&f, cuts),
+                names::bundle_float_module_cuts(&f, cuts),
                 crate::bundle::pair_float::bundle_float_latency(cuts),
                 Family::BundleFloat { f, cuts },
             );
@@ -545,7 +398,7 @@ pub fn catalog() -> Vec<Exported> {
     }
     for (f, cuts) in crate::bundle::stream_float::bundle_stream_float_configs() {
         add(
-            crate::bundle::stream_float::bundle_stream_float_module(&f, cuts),
+            names::bundle_stream_float_module(&f, cuts),
             golden::bundle::stream::decided_latency(
                 crate::bundle::pair_float::bundle_float_latency(cuts),
             ),
@@ -578,41 +431,6 @@ pub fn find(module: &str) -> Result<Exported, String> {
     ))
 }
 
-/// Module name of the table option of the fixed cull-plane tester at its default depth, e.g.
-/// `plane_fix_g12_i16f11_t20f6_n8_fd11_r8_k4` (the testbenches' name).
-pub fn plane_fix_module(cf: &CullFixFormat, k: usize) -> String {
-    format!("plane_fix_{}_k{k}", cf.name())
-}
-
-/// Module name of the table option with slab cuts `scuts` and plane cuts `pcuts`: the default name
-/// with the depth's suffix from [`crate::plane::fix::PLANE_FIX_DEPTHS`] (`_p11`), or `_c<slab>_<plane>`
-/// in hex for a depth not in that list.
-pub fn plane_fix_module_cuts(cf: &CullFixFormat, k: usize, scuts: usize, pcuts: usize) -> String {
-    let suffix = match crate::plane::fix::PLANE_FIX_DEPTHS
-        .iter()
-        .find(|(s, p, _)| (*s, *p) == (scuts, pcuts))
-    {
-        Some((_, _, s)) => s.to_string(),
-        None => format!("_c{scuts:02x}_{pcuts:02x}"),
-    };
-    format!("{}{suffix}", plane_fix_module(cf, k))
-}
-
-/// Module name of the fixed cull-plane tester `S` for `cf`, from its planes and cut points.
-pub fn plane_fix_module_of<S: crate::plane::fix::PlaneFixIo>(cf: &CullFixFormat) -> String {
-    plane_fix_module_cuts(cf, S::PLANES, S::SLAB_CUTS, S::CUTS)
-}
-
-/// Module name of the fraction option, e.g. `plane_fix_frac_g12_i16f11_t20f6_n8_fd11_k4` (no table bits).
-pub fn plane_frac_module(cf: &CullFixFormat, k: usize) -> String {
-    format!(
-        "plane_fix_frac_{}_n{}_fd{}_k{k}",
-        cf.base.name(),
-        cf.n,
-        cf.fd
-    )
-}
-
 /// `(module, Verilog, latency)` of the cull-plane testers in the synthesis report: the table option over
 /// b8, b12 and b16 at the default depth and the 11-clock depth and the fraction option over b12 and b16,
 /// each with 1 and 4 planes; the float tester with 1 plane.
@@ -622,7 +440,7 @@ pub fn plane_verilog() -> Vec<(String, String, usize)> {
         (module, v, S::LATENCY)
     }
     fn fix<S: crate::plane::fix::PlaneFixIo>(cf: &CullFixFormat) -> (String, String, usize) {
-        named(plane_fix_module_of::<S>(cf), S::for_format(cf))
+        named(names::plane_fix_module_of::<S>(cf), S::for_format(cf))
     }
     let b8 = CullFixFormat::over(FixFormat::b8());
     let b12 = CullFixFormat::over(FixFormat::b12());
@@ -641,49 +459,30 @@ pub fn plane_verilog() -> Vec<(String, String, usize)> {
         fix::<crate::PlaneFixB16P11<1>>(&b16),
         fix::<crate::PlaneFixB16P11<4>>(&b16),
         named(
-            plane_frac_module(&b12, 1),
+            names::plane_frac_module(&b12, 1),
             crate::PlaneFracB12::<1>::new(&b12),
         ),
         named(
-            plane_frac_module(&b12, 4),
+            names::plane_frac_module(&b12, 4),
             crate::PlaneFracB12::<4>::new(&b12),
         ),
         named(
-            plane_frac_module(&b16, 1),
+            names::plane_frac_module(&b16, 1),
             crate::PlaneFracB16::<1>::new(&b16),
         ),
         named(
-            plane_frac_module(&b16, 4),
+            names::plane_frac_module(&b16, 4),
             crate::PlaneFracB16::<4>::new(&b16),
         ),
     ];
-    for (f, k) in crate::plane::float_export::PLANE_FLOAT_CONFIGS {
+    for (f, k) in crate::PLANE_FLOAT_CONFIGS {
         if k == 1 {
-            let m = crate::plane::float_export::plane_float_module(&CullFloatFormat::over(f), k);
-            let text =
-                crate::plane::float_export::plane_float_verilog(&f, k).expect("instantiated");
+            let m = names::plane_float_module(&CullFloatFormat::over(f), k);
+            let text = plane_float_verilog(&f, k).expect("instantiated");
             v.push((m, text, crate::PLANE_FLOAT_LATENCY));
         }
     }
     v
-}
-
-/// Module name of a float unit (`add`, `mul`): format and rounding mode, e.g. `fp_add_e8m23_rd`.
-pub fn fp_unit_module(
-    unit: &str,
-    f: &golden::format::float::FloatFormat,
-    mode: golden::format::float::Rounding,
-) -> String {
-    format!("fp_{unit}_{}_{}", f.name(), mode_suffix(mode))
-}
-
-/// `rne`, `rd` or `ru`.
-pub fn mode_suffix(mode: golden::format::float::Rounding) -> &'static str {
-    match mode {
-        golden::format::float::Rounding::NearestEven => "rne",
-        golden::format::float::Rounding::Down => "rd",
-        golden::format::float::Rounding::Up => "ru",
-    }
 }
 
 /// Verilog of the float adder `FpAdd<E, M, N>` in `mode`.
@@ -692,7 +491,7 @@ pub fn fp_add_verilog<const E: usize, const M: usize, const N: usize>(
 ) -> String {
     let f = golden::format::float::FloatFormat::new(E as u32, M as u32).expect("valid format");
     let mut uut = crate::fp::add::FpAdd::<E, M, N>::new(mode);
-    verilog_named(&mut uut, &fp_unit_module("add", &f, mode))
+    verilog_named(&mut uut, &names::fp_unit_module("add", &f, mode))
 }
 
 /// Verilog of the float multiplier `FpMul<E, M, N>` in `mode`.
@@ -701,7 +500,7 @@ pub fn fp_mul_verilog<const E: usize, const M: usize, const N: usize>(
 ) -> String {
     let f = golden::format::float::FloatFormat::new(E as u32, M as u32).expect("valid format");
     let mut uut = crate::fp::mul::FpMul::<E, M, N>::new(mode);
-    verilog_named(&mut uut, &fp_unit_module("mul", &f, mode))
+    verilog_named(&mut uut, &names::fp_unit_module("mul", &f, mode))
 }
 
 /// Verilog of the float comparator `FpCmp<N>` of format `f` (combinational `lt`, `le`), module
@@ -756,49 +555,118 @@ pub fn plane_recip_table_verilog(r: u32) -> String {
     verilog_named(&mut uut, &format!("plane_recip_table_r{r}"))
 }
 
-#[cfg(test)]
-mod plain_tests {
-    use super::*;
+/// `(module, Verilog, latency)` of the fixed pair `S` for `bf`.
+fn bundle_fix_verilog_of<S: BundleFixIo>(bf: &BundleFixFormat) -> (String, String, usize) {
+    let module = names::bundle_fix_of::<S>(bf);
+    let v = verilog_named(&mut S::for_format(bf), &module);
+    (module, v, S::LATENCY)
+}
 
-    #[test]
-    fn dollar_names_become_plain_and_system_functions_stay() {
-        let v = "module top(clock,ray_o_lo$0,hit);\n  input wire [11:0] ray_o_lo$0;\n  \
-                 assign x = $signed(ray_o_lo$0) + 12'h0a;\n  top$axis$1 axis$1(.e(axis$1$e));\n\
-                 $display(\"a$b\");\nendmodule\n";
-        let p = plain_verilog(v).unwrap();
-        assert!(p.contains("module top(clock,ray_o_lo_0,hit);"), "{p}");
-        assert!(p.contains("$signed(ray_o_lo_0) + 12'h0a"), "{p}");
-        assert!(p.contains("top_axis_1 axis_1(.e(axis_1_e));"), "{p}");
-        assert!(p.contains("$display(\"a$b\")"), "{p}");
-    }
+/// `(module, Verilog, latency)` of the fixed bundle pair over the presets b8, b12, b16, at every depth
+/// of [`crate::bundle::pair_fix::BUNDLE_FIX_DEPTHS`] (the 3-clock pairs first; for [`export_all`]).
+pub fn bundle_fix_verilog() -> Vec<(String, String, usize)> {
+    let [b8, b12, b16] = BundleFixFormat::presets();
+    vec![
+        bundle_fix_verilog_of::<crate::BundleFixB8>(&b8),
+        bundle_fix_verilog_of::<crate::BundleFixB12>(&b12),
+        bundle_fix_verilog_of::<crate::BundleFixB16>(&b16),
+        bundle_fix_verilog_of::<crate::BundleFixB8P5>(&b8),
+        bundle_fix_verilog_of::<crate::BundleFixB12P5>(&b12),
+        bundle_fix_verilog_of::<crate::BundleFixB16P5>(&b16),
+    ]
+}
 
-    #[test]
-    fn a_collision_is_an_error_naming_both() {
-        let e = plain_verilog("module top(a$0,a_0);\nendmodule\n").unwrap_err();
-        assert!(e.contains("a$0") && e.contains("a_0"), "{e}");
-    }
+/// Verilog of the float pair `S`, named after its format and cut points.
+pub fn bundle_float_verilog_of<S: BundleFloatIo + Block>() -> String {
+    let mut uut = Box::new(S::for_format(&S::format()));
+    verilog_named(uut.as_mut(), &names::bundle_float_of::<S>())
+}
 
-    #[test]
-    fn names_in_different_modules_do_not_collide() {
-        let v =
-            "module top(a);\n  wire r$q;\nendmodule\nmodule top$u(b);\n  wire r_q;\nendmodule\n";
-        assert!(plain_verilog(v).is_ok());
-        let e = plain_verilog("module top(a);\n  wire r$q;\n  wire r_q;\nendmodule\n").unwrap_err();
-        assert!(e.contains("r$q"), "{e}");
-    }
+/// Verilog of the default float bundle pair for an instantiated format.
+pub fn bundle_float_verilog(f: &FloatFormat) -> Result<String, String> {
+    crate::with_bundle_float!(f, P, { bundle_float_verilog_of::<P>() })
+}
 
-    #[test]
-    fn a_scalar_port_that_reads_as_an_element_is_refused() {
-        let e = plain_verilog("module top(clock,t_1);\nendmodule\n").unwrap_err();
-        assert!(e.contains("t_1"), "{e}");
+/// `(module, Verilog, latency)` of the 13-clock float bundle pairs over [`crate::BUNDLE_FLOAT_FORMATS`].
+pub fn bundle_float_deep_verilog() -> Vec<(String, String, usize)> {
+    fn one<S: BundleFloatIo + Block>() -> (String, String, usize) {
+        (
+            names::bundle_float_of::<S>(),
+            bundle_float_verilog_of::<S>(),
+            S::LATENCY,
+        )
     }
+    vec![
+        one::<crate::BundleFloatFp32P13>(),
+        one::<crate::BundleFloatBf16P13>(),
+        one::<crate::BundleFloatFp16P13>(),
+    ]
+}
 
-    #[test]
-    fn ports_split_into_field_and_index() {
-        assert_eq!(split_port("ray_o_lo_2"), ("ray_o_lo", Some(2)));
-        assert_eq!(split_port("ray_t_min"), ("ray_t_min", None));
-        assert_eq!(split_port("hit"), ("hit", None));
-    }
+/// `(module, Verilog, clocks of a decided job)` of the results processor over the presets b12 and b16
+/// (for [`export_all`]).
+pub fn bundle_split_verilog() -> Vec<(String, String, usize)> {
+    let [_, b12, b16] = BundleFixFormat::presets();
+    let decided = BUNDLE_FIX_LATENCY + 1;
+    vec![
+        (
+            names::bundle_split_module(&b12),
+            verilog_named(
+                &mut crate::BundleSplitB12::new(&b12),
+                &names::bundle_split_module(&b12),
+            ),
+            decided,
+        ),
+        (
+            names::bundle_split_module(&b16),
+            verilog_named(
+                &mut crate::BundleSplitB16::new(&b16),
+                &names::bundle_split_module(&b16),
+            ),
+            decided,
+        ),
+    ]
+}
+
+/// `(module, Verilog, clocks of a decided job)` of a streaming processor `S` over `dp`.
+pub fn bundle_stream_verilog_of<S: BundleStreamIo>(dp: &S::Dp) -> (String, String, usize) {
+    let module = names::bundle_stream_of::<S>(dp);
+    let v = verilog_named(&mut S::for_format(dp), &module);
+    (module, v, decided_latency(S::PAIR_LATENCY))
+}
+
+/// `(module, Verilog, clocks of a decided job)` of every configuration in [`crate::bundle::stream::bundle_stream_configs`]
+/// (for [`export_all`]).
+pub fn bundle_stream_verilog() -> Vec<(String, String, usize)> {
+    let [_, b12, b16] = BundleFixFormat::presets();
+    vec![
+        bundle_stream_verilog_of::<crate::BundleStreamB12>(&b12),
+        bundle_stream_verilog_of::<crate::BundleStreamB16>(&b16),
+        bundle_stream_verilog_of::<crate::BundleStreamB12P5>(&b12),
+    ]
+}
+
+/// `(module, Verilog, clocks of a decided job)` of every configuration in
+/// [`crate::bundle::stream_float::bundle_stream_float_configs`] (for [`export_all`]).
+pub fn bundle_stream_float_verilog() -> Vec<(String, String, usize)> {
+    vec![
+        bundle_stream_verilog_of::<crate::BundleStreamFp32>(&FloatFormat::FP32),
+        bundle_stream_verilog_of::<crate::BundleStreamBf16>(&FloatFormat::BF16),
+        bundle_stream_verilog_of::<crate::BundleStreamFp16>(&FloatFormat::FP16),
+        bundle_stream_verilog_of::<crate::BundleStreamFp16P13>(&FloatFormat::FP16),
+    ]
+}
+
+/// Verilog of the chained float node tester for an instantiated format and plane count, with the
+/// default table (`R = min(M, 8)`).
+pub fn plane_float_verilog(f: &FloatFormat, k: usize) -> Result<String, String> {
+    crate::with_plane_float!(f, k, P, {
+        let mut uut = P::new();
+        verilog_named(
+            &mut uut,
+            &names::plane_float_module(&CullFloatFormat::over(*f), k),
+        )
+    })
 }
 
 #[cfg(test)]

@@ -8,8 +8,10 @@
 //! | [`plane`] | the cull-plane testers, fixed (table and quotient options) and float | `golden::plane` |
 //! | [`bundle`] | the AllHit / AnyHit edge testers, the pairs and the results processor | `golden::bundle` |
 //!
-//! Shared: [`io`] (the testbench interface of the slab-shaped testers), [`cut`] (pipeline cut points and waits), [`delay`], [`export`] (Verilog
-//! export of every configuration). Which configurations exist is said once per family, in its `registry`
+//! Shared: [`io`] (the testbench interface of the slab-shaped testers), [`cut`] (pipeline cut points and
+//! waits), [`delay`], [`verilog`] (a block's Verilog text with plain names), [`names`] (every exported
+//! module's name, made in one place), [`export`] (Verilog export of every configuration and the catalogue
+//! of exported modules). Blocks import neither [`names`] nor [`export`]; those two read the blocks. Which configurations exist is said once per family, in its `registry`
 //! (and the slab tester's format [`slab::ladder`]); their aliases and format lists are re-exported here.
 
 pub mod bundle;
@@ -18,8 +20,10 @@ pub mod delay;
 pub mod export;
 pub mod fp;
 pub mod io;
+pub mod names;
 pub mod plane;
 pub mod slab;
+pub mod verilog;
 
 pub use bundle::registry::*;
 pub use fp::add::FpAdd;

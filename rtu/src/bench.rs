@@ -124,7 +124,7 @@ pub fn run(a: &Args, out: &Path) -> Result<(), String> {
     let tb_build = Instant::now();
     let h = tb::verilator::build(
         &v,
-        &rtl::export::slab_fix_module(&fmt),
+        &rtl::names::slab_fix_module(&fmt),
         &out.join("verilator"),
     )?;
     let build_s = tb_build.elapsed().as_secs_f64();

@@ -167,7 +167,7 @@ pub fn run(a: &Args, out: &Path) -> Result<(), String> {
     if !a.no_xsim {
         let vdir = out.join("verilator");
         for (fi, fmt) in fixed.iter().enumerate() {
-            let module = rtl::export::slab_fix_module(fmt);
+            let module = rtl::names::slab_fix_module(fmt);
             let h = tb::verilator::build(&rtl::export::slab_fix_verilog(fmt)?, &module, &vdir)?;
             let pb = bar(a.vectors, format!("verilator = rtl = model {}", fmt.name()));
             let t = Instant::now();
@@ -190,7 +190,7 @@ pub fn run(a: &Args, out: &Path) -> Result<(), String> {
             log.xsim(&fmt.name(), r, a.lockstep, t.elapsed().as_secs_f64());
         }
         for (fi, f) in floats.iter().enumerate() {
-            let module = rtl::export::slab_float_module(f);
+            let module = rtl::names::slab_float_module(f);
             let h = tb::verilator::build(&rtl::export::slab_float_verilog(f)?, &module, &vdir)?;
             let pb = bar(a.vectors, format!("verilator = rtl = model {}", f.name()));
             let t = Instant::now();

@@ -569,8 +569,8 @@ fn render(
 /// Module name of `f`'s slab tester with cut points `cuts`.
 fn module(f: &Format, cuts: usize) -> String {
     match f {
-        Format::Fix(x) => rtl::export::slab_fix_module_cuts(x, cuts),
-        Format::Float(x) => rtl::export::slab_float_module_cuts(x, cuts),
+        Format::Fix(x) => rtl::names::slab_fix_module_cuts(x, cuts),
+        Format::Float(x) => rtl::names::slab_float_module_cuts(x, cuts),
     }
 }
 

@@ -60,7 +60,7 @@ fn proofs(quick: bool, verilog: &Path) -> Result<Vec<Proof>, String> {
     )?);
     for fmt in golden::format::fixed::FixFormat::presets() {
         let (module, text) = (
-            rtl::export::slab_fix_module(&fmt),
+            rtl::names::slab_fix_module(&fmt),
             rtl::export::slab_fix_verilog(&fmt)?,
         );
         let l = rtl::slab::fix::slab_fix_latency(rtl::slab::fix::SLAB_FIX_CUTS);

@@ -249,7 +249,7 @@ pub fn run(scene: &Scene, out: &Path) -> Result<(Vec<Row>, String), String> {
     let vcd = out.join("vcd").join(format!("{}_b12.vcd", scene.name));
     {
         // A GTKWave save file beside the waveform: ports and stage registers grouped by stage.
-        let m = rtl::export::slab_fix_module(&FixFormat::b12());
+        let m = rtl::names::slab_fix_module(&FixFormat::b12());
         let v = std::fs::read_to_string(vdir.join(format!("{m}.v"))).map_err(|e| e.to_string())?;
         let name = vcd
             .file_name()

@@ -380,22 +380,20 @@ pub fn read_area(path: &Path) -> Result<HashMap<String, Area>, String> {
 /// The RTL modules a configuration needs: the single-ray node tester, and the pair when `B > 1`.
 pub fn modules(f: &Format, k: usize, b: usize) -> Result<Vec<String>, String> {
     let mut m = vec![match f {
-        Format::Fix(x) if k == 0 => rtl::export::slab_fix_module(x),
-        Format::Fix(x) => rtl::export::plane_fix_module(
+        Format::Fix(x) if k == 0 => rtl::names::slab_fix_module(x),
+        Format::Fix(x) => rtl::names::plane_fix_module(
             &CullFixFormat::try_over(*x).map_err(|e| format!("{}: {e}", x.name()))?,
             k,
         ),
-        Format::Float(x) if k == 0 => rtl::export::slab_float_module(x),
-        Format::Float(x) => {
-            rtl::plane::float_export::plane_float_module(&CullFloatFormat::over(*x), k)
-        }
+        Format::Float(x) if k == 0 => rtl::names::slab_float_module(x),
+        Format::Float(x) => rtl::names::plane_float_module(&CullFloatFormat::over(*x), k),
     }];
     if b > 1 {
         m.push(match f {
-            Format::Fix(x) => rtl::bundle::pair_fix::bundle_fix_module(
+            Format::Fix(x) => rtl::names::bundle_fix_module(
                 &BundleFixFormat::over(*x).map_err(|e| e.to_string())?,
             ),
-            Format::Float(x) => rtl::bundle::pair_float::bundle_float_module(x),
+            Format::Float(x) => rtl::names::bundle_float_module(x),
         });
     }
     Ok(m)

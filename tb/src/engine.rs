@@ -66,7 +66,7 @@ where
     if engine == Engine::Model {
         return run_model(fmt, tests, vcd, sink);
     }
-    let module = rtl::export::slab_fix_module(&fmt);
+    let module = rtl::names::slab_fix_module(&fmt);
     rtl::with_slab_fix!(&fmt, S, {
         run_block(
             engine,
@@ -104,7 +104,7 @@ where
     if engine == Engine::Model {
         return run_model(f, tests, vcd, sink);
     }
-    let module = rtl::export::slab_float_module(&f);
+    let module = rtl::names::slab_float_module(&f);
     rtl::with_slab_float!(&f, S, {
         run_block(
             engine,
@@ -198,7 +198,7 @@ where
         ctx,
         || S::for_format(&ctx.cf),
         || {
-            Ok(rtl::export::verilog_named(
+            Ok(rtl::verilog::verilog_named(
                 &mut S::for_format(&ctx.cf),
                 &module,
             ))
@@ -236,7 +236,7 @@ where
             ctx.cf.name()
         ));
     }
-    let module = rtl::plane::float_export::plane_float_module(&ctx.cf, ctx.k);
+    let module = rtl::names::plane_float_module(&ctx.cf, ctx.k);
     let f = ctx.cf.f;
     std::thread::scope(|s| {
         std::thread::Builder::new()
@@ -247,7 +247,7 @@ where
                         engine,
                         ctx,
                         P::make,
-                        || rtl::plane::float_export::plane_float_verilog(&f, ctx.k),
+                        || rtl::export::plane_float_verilog(&f, ctx.k),
                         &module,
                         tests,
                         verilator_dir,

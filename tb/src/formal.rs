@@ -333,7 +333,7 @@ pub fn float_unit_proofs(f: &FloatFormat, mutants: bool) -> Vec<Proof> {
     let mut v = vec![];
     for (unit, list, op) in [("add", &uv.add, "add"), ("mul", &uv.mul, "mul")] {
         for (mode, text, lat) in list {
-            let module = rtl::export::fp_unit_module(unit, f, *mode);
+            let module = rtl::names::fp_unit_module(unit, f, *mode);
             let rm = symfpu_mode(*mode);
             let prelude = symfpu_ref(&format!("-op {op} -rm {rm}"), f, "ref_op");
             let p = Proof {
@@ -469,11 +469,11 @@ fn float_mutants(
         .find(|(m, _, _)| *m == flipped)
         .expect("every mode is built")
         .1;
-    let other = rtl::export::fp_unit_module(unit, f, flipped);
+    let other = rtl::names::fp_unit_module(unit, f, flipped);
     let what = format!(
         "rounding direction flipped: the {} unit in place of the {} one",
-        rtl::export::mode_suffix(flipped),
-        rtl::export::mode_suffix(mode)
+        rtl::names::mode_suffix(flipped),
+        rtl::names::mode_suffix(mode)
     );
     v.push(mutant_with(
         p,

@@ -1,6 +1,6 @@
 //! VCD files with plain signal names: rust-hdl's VCD writer names an array element `ray_o_lo$0` and a
 //! child's signal `axis$0$e`; [`PlainVcd`] passes its output through and renames every `$scope` and
-//! `$var` reference in the header by [`rtl::export::plain_name`], so a waveform shows the names of the
+//! `$var` reference in the header by [`rtl::verilog::plain_name`], so a waveform shows the names of the
 //! exported Verilog (`ray_o_lo_0`, `axis_0_e`).
 
 use std::fs::File;
@@ -50,7 +50,7 @@ impl<W: Write> PlainVcd<W> {
             .enumerate()
             .map(|(k, t)| {
                 if k == at {
-                    rtl::export::plain_name(t)
+                    rtl::verilog::plain_name(t)
                 } else {
                     t.to_string()
                 }

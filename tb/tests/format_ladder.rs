@@ -14,9 +14,8 @@ use golden::slab::fix::slab_fix;
 use golden::slab::float::slab_float;
 use golden::slab::gen::GenKind;
 use proptest::test_runner::{Config, TestCaseError, TestRunner};
-use rtl::export::{
-    slab_fix_module, slab_fix_verilog_ladder, slab_float_module, slab_float_verilog_ladder,
-};
+use rtl::export::{slab_fix_verilog_ladder, slab_float_verilog_ladder};
+use rtl::names::{slab_fix_module, slab_float_module};
 use rtl::slab::fix::SlabFixIo;
 use rtl::slab::float::SlabFloatIo;
 use rtl::SlabIo;

@@ -237,10 +237,6 @@ pub trait BundleFixIo: SlabIo<Ray = PairInput, Box = BoxPair<FixBox>, Out = (boo
     const CUTS: usize;
     /// The pair for `bf` (whose widths must match the block's).
     fn for_format(bf: &BundleFixFormat) -> Self;
-    /// The block's module name in exported Verilog, for `bf`.
-    fn module(bf: &BundleFixFormat) -> String {
-        bundle_fix_module_cuts(bf, Self::CUTS)
-    }
 }
 
 impl<const G: usize, const V: usize, const D: usize, const T: usize, const CUTS: usize> BundleFixIo
@@ -317,38 +313,4 @@ impl<const G: usize, const V: usize, const D: usize, const T: usize, const CUTS:
             _ => return None,
         })
     }
-}
-
-/// The module name of the default (3-clock) fixed bundle pair for `bf` in exported Verilog.
-pub fn bundle_fix_module(bf: &BundleFixFormat) -> String {
-    bundle_fix_module_cuts(bf, BUNDLE_TEST_CUTS)
-}
-
-/// The module name of the fixed bundle pair for `bf` with cut points `cuts`: the format's name with the
-/// suffix of the configuration in [`BUNDLE_FIX_DEPTHS`] (`_p5` for the 5-clock pair; an unlisted
-/// configuration gets `_c<cuts in two hex digits>`, [`crate::cut::depth_suffix`]).
-pub fn bundle_fix_module_cuts(bf: &BundleFixFormat, cuts: usize) -> String {
-    let suffix = crate::cut::depth_suffix(&BUNDLE_FIX_DEPTHS, cuts);
-    format!("bundle_fix_{}{suffix}", bf.name())
-}
-
-/// `(module, Verilog, latency)` of the fixed pair `S` for `bf`.
-fn verilog_of<S: BundleFixIo>(bf: &BundleFixFormat) -> (String, String, usize) {
-    let module = S::module(bf);
-    let v = crate::export::verilog_named(&mut S::for_format(bf), &module);
-    (module, v, S::LATENCY)
-}
-
-/// `(module, Verilog, latency)` of the fixed bundle pair over the presets b8, b12, b16, at every depth
-/// of [`BUNDLE_FIX_DEPTHS`] (the 3-clock pairs first; for `crate::export::export_all`).
-pub fn bundle_fix_verilog() -> Vec<(String, String, usize)> {
-    let [b8, b12, b16] = BundleFixFormat::presets();
-    vec![
-        verilog_of::<crate::BundleFixB8>(&b8),
-        verilog_of::<crate::BundleFixB12>(&b12),
-        verilog_of::<crate::BundleFixB16>(&b16),
-        verilog_of::<crate::BundleFixB8P5>(&b8),
-        verilog_of::<crate::BundleFixB12P5>(&b12),
-        verilog_of::<crate::BundleFixB16P5>(&b16),
-    ]
 }

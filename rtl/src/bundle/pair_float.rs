@@ -64,7 +64,7 @@ pub const fn bundle_float_latency(cuts: usize) -> usize {
 pub const BUNDLE_FLOAT_LATENCY: usize = bundle_float_latency(0);
 
 /// The configurations that are built (exported, tested, timed): `(cuts, name suffix)`; the module name
-/// is `bundle_float_<format><suffix>` ([`bundle_float_module_cuts`]).
+/// is `bundle_float_<format><suffix>` (`crate::names::bundle_float_module_cuts`).
 pub const BUNDLE_FLOAT_DEPTHS: [(usize, &str); 2] = [(0, ""), (crate::fp::cuts::ALL, "_p13")];
 
 const _: () = assert!(bundle_float_latency(crate::fp::cuts::ALL) == 13);
@@ -248,10 +248,6 @@ pub trait BundleFloatIo:
     fn format() -> FloatFormat;
     /// The pair for `f`, which must be the block's format.
     fn for_format(f: &FloatFormat) -> Self;
-    /// The block's module name in exported Verilog.
-    fn module() -> String {
-        bundle_float_module_cuts(&Self::format(), Self::CUTS)
-    }
 }
 
 impl<const E: usize, const M: usize, const N: usize, const CUTS: usize> BundleFloatIo
@@ -339,68 +335,4 @@ impl<const E: usize, const M: usize, const N: usize, const CUTS: usize> SlabIo
             _ => return None,
         })
     }
-}
-
-/// Module name of the default (9-clock) float bundle pair for a format, e.g. `bundle_float_e8m23`.
-pub fn bundle_float_module(f: &FloatFormat) -> String {
-    bundle_float_module_cuts(f, 0)
-}
-
-/// Module name of the float bundle pair for a format and cut points: the format's name with the suffix
-/// of the configuration in [`BUNDLE_FLOAT_DEPTHS`] (`_p13` for the 13-clock pair; an unlisted
-/// configuration gets `_c<cuts in two hex digits>`, [`crate::cut::depth_suffix`]).
-pub fn bundle_float_module_cuts(f: &FloatFormat, cuts: usize) -> String {
-    let suffix = crate::cut::depth_suffix(&BUNDLE_FLOAT_DEPTHS, cuts);
-    format!("bundle_float_{}{suffix}", f.name())
-}
-
-/// Verilog of the float pair `S`, named after its format and cut points.
-pub fn bundle_float_verilog_of<S: BundleFloatIo + Block>() -> String {
-    let mut uut = Box::new(S::for_format(&S::format()));
-    crate::export::verilog_named(uut.as_mut(), &S::module())
-}
-
-/// Verilog of the default float bundle pair for an instantiated format.
-pub fn bundle_float_verilog(f: &FloatFormat) -> Result<String, String> {
-    crate::with_bundle_float!(f, P, { bundle_float_verilog_of::<P>() })
-}
-
-/// `(module, Verilog, latency)` of the 13-clock float bundle pairs over [`crate::BUNDLE_FLOAT_FORMATS`].
-pub fn bundle_float_deep_verilog() -> Vec<(String, String, usize)> {
-    fn one<S: BundleFloatIo + Block>() -> (String, String, usize) {
-        (S::module(), bundle_float_verilog_of::<S>(), S::LATENCY)
-    }
-    vec![
-        one::<crate::BundleFloatFp32P13>(),
-        one::<crate::BundleFloatBf16P13>(),
-        one::<crate::BundleFloatFp16P13>(),
-    ]
-}
-
-/// Runs `$body` with `$t` bound to the `BundleFloat` type of a float format, or returns an error for a
-/// format without an instantiated block.
-#[macro_export]
-macro_rules! with_bundle_float {
-    ($f:expr, $t:ident, $body:block) => {{
-        let f: &golden::format::float::FloatFormat = $f;
-        match (f.e, f.m) {
-            (8, 23) => {
-                type $t = $crate::BundleFloatFp32;
-                Ok($body)
-            }
-            (8, 7) => {
-                type $t = $crate::BundleFloatBf16;
-                Ok($body)
-            }
-            (5, 10) => {
-                type $t = $crate::BundleFloatFp16;
-                Ok($body)
-            }
-            _ => Err(format!(
-                "no BundleFloat instance for float format {}: instantiated are e8m23, e8m7, e5m10 \
-                 (add a type alias in rtl/src/bundle/registry.rs for another)",
-                f.name()
-            )),
-        }
-    }};
 }

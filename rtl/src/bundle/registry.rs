@@ -66,3 +66,31 @@ pub type BundleStreamBf16 = BundleStreamFloat<8, 7, 16>;
 pub type BundleStreamFp16 = BundleStreamFloat<5, 10, 16>;
 /// The same in binary16 around the 13-clock float pair.
 pub type BundleStreamFp16P13 = BundleStreamFloat<5, 10, 16, { crate::fp::cuts::ALL }>;
+
+/// Runs `$body` with `$t` bound to the `BundleFloat` type of a float format, or returns an error for a
+/// format without an instantiated block.
+#[macro_export]
+macro_rules! with_bundle_float {
+    ($f:expr, $t:ident, $body:block) => {{
+        let f: &golden::format::float::FloatFormat = $f;
+        match (f.e, f.m) {
+            (8, 23) => {
+                type $t = $crate::BundleFloatFp32;
+                Ok($body)
+            }
+            (8, 7) => {
+                type $t = $crate::BundleFloatBf16;
+                Ok($body)
+            }
+            (5, 10) => {
+                type $t = $crate::BundleFloatFp16;
+                Ok($body)
+            }
+            _ => Err(format!(
+                "no BundleFloat instance for float format {}: instantiated are e8m23, e8m7, e5m10 \
+                 (add a type alias in rtl/src/bundle/registry.rs for another)",
+                f.name()
+            )),
+        }
+    }};
+}

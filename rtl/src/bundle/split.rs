@@ -64,7 +64,6 @@
 
 use crate::bundle::pair_fix::{BundleFix, BUNDLE_FIX_LATENCY};
 use crate::bundle::ray_store::RayStore;
-use crate::export::verilog_named;
 use crate::slab::fix::{code, TAG_BITS};
 use golden::bundle::edge::BoxPair;
 use golden::bundle::fix::{BundleFixFormat, FixBundle};
@@ -529,36 +528,6 @@ impl<const G: usize, const V: usize, const D: usize, const T: usize> Logic
         self.cycles.next = self.cycles_out_q.q.val();
         self.clocks.next = self.clocks_out_q.q.val();
     }
-}
-
-/// Module name of the results processor for a format, e.g. `bundle_split_g12_i16f11_t20f6_d10_n16`.
-pub fn bundle_split_module(bf: &BundleFixFormat) -> String {
-    format!("bundle_split_{}_n{SPLIT_RAYS}", bf.name())
-}
-
-/// `(module, Verilog, clocks of a decided job)` of the results processor over the presets b12 and b16
-/// (for `crate::export::export_all`).
-pub fn bundle_split_verilog() -> Vec<(String, String, usize)> {
-    let [_, b12, b16] = BundleFixFormat::presets();
-    let decided = BUNDLE_FIX_LATENCY + 1;
-    vec![
-        (
-            bundle_split_module(&b12),
-            verilog_named(
-                &mut crate::BundleSplitB12::new(&b12),
-                &bundle_split_module(&b12),
-            ),
-            decided,
-        ),
-        (
-            bundle_split_module(&b16),
-            verilog_named(
-                &mut crate::BundleSplitB16::new(&b16),
-                &bundle_split_module(&b16),
-            ),
-            decided,
-        ),
-    ]
 }
 
 /// A job on the job port: the bundle, its box pair and the active rays.

@@ -75,13 +75,12 @@ use crate::bundle::ray_store::{ray_job_word, RayStore, TwinRam};
 use crate::bundle::rebound::{ReboundAcc, J_BITS};
 pub use crate::bundle::stream_ctl::STREAM_ADDR_BITS;
 use crate::bundle::stream_ctl::{StreamCtl8, SET_BITS};
-use crate::export::verilog_named;
 use crate::slab::fix::{code, sext};
 use golden::bundle::fix::{BundleFixFormat, FixBundle};
 use golden::bundle::rebound::ScaledBundle;
 use golden::bundle::stream::{
-    decided_latency, PairDatapath, StreamIn, StreamInOf, StreamJob, StreamOut, StreamOutOf,
-    STREAM_RAYS, STREAM_SETS, STREAM_TAG_BITS,
+    PairDatapath, StreamIn, StreamInOf, StreamJob, StreamOut, StreamOutOf, STREAM_RAYS,
+    STREAM_SETS, STREAM_TAG_BITS,
 };
 use golden::format::fixed::FixBox;
 use rust_hdl::prelude::*;
@@ -343,28 +342,6 @@ impl<const G: usize, const V: usize, const D: usize, const T: usize, const CUTS:
     }
 }
 
-/// Module name of the streaming processor over `bf` with the pair's cut points `cuts`, e.g.
-/// `bundle_stream_g12_i16f11_t20f6_d10_n16x4` (the default pair) or `..._d10_p5_n16x4`.
-pub fn bundle_stream_module_cuts(bf: &BundleFixFormat, cuts: usize) -> String {
-    let depth = crate::cut::depth_suffix(&BUNDLE_FIX_DEPTHS, cuts);
-    format!(
-        "bundle_stream_{}{depth}_n{STREAM_RAYS}x{STREAM_SETS}",
-        bf.name()
-    )
-}
-
-/// Module name of the streaming processor over the default pair.
-pub fn bundle_stream_module(bf: &BundleFixFormat) -> String {
-    bundle_stream_module_cuts(bf, BUNDLE_TEST_CUTS)
-}
-
-/// `(module, Verilog, clocks of a decided job)` of a streaming processor `S` over `dp`.
-pub fn bundle_stream_verilog_of<S: BundleStreamIo>(dp: &S::Dp) -> (String, String, usize) {
-    let module = S::module(dp);
-    let v = verilog_named(&mut S::for_format(dp), &module);
-    (module, v, decided_latency(S::PAIR_LATENCY))
-}
-
 /// The exported configurations `(format, cut points of the pair)`, in the order of
 /// [`bundle_stream_verilog`]: b12 and b16 over the 3-clock pair, b12 over the 5-clock one.
 pub fn bundle_stream_configs() -> Vec<(BundleFixFormat, usize)> {
@@ -376,17 +353,6 @@ pub fn bundle_stream_configs() -> Vec<(BundleFixFormat, usize)> {
     ]
 }
 
-/// `(module, Verilog, clocks of a decided job)` of every configuration in [`bundle_stream_configs`]
-/// (for `crate::export::export_all`).
-pub fn bundle_stream_verilog() -> Vec<(String, String, usize)> {
-    let [_, b12, b16] = BundleFixFormat::presets();
-    vec![
-        bundle_stream_verilog_of::<crate::BundleStreamB12>(&b12),
-        bundle_stream_verilog_of::<crate::BundleStreamB16>(&b16),
-        bundle_stream_verilog_of::<crate::BundleStreamB12P5>(&b12),
-    ]
-}
-
 /// A streaming processor of any datapath and width, seen from a testbench.
 pub trait BundleStreamIo: Block {
     /// The pair's datapath (its format).
@@ -395,8 +361,13 @@ pub trait BundleStreamIo: Block {
     const PAIR_LATENCY: usize;
     /// The block for `dp` (which must match the block's widths).
     fn for_format(dp: &Self::Dp) -> Self;
-    /// The block's module name in exported Verilog.
-    fn module(dp: &Self::Dp) -> String;
+    /// The pair's cut points.
+    const CUTS: usize;
+    /// The pair's list of built depths `(cut points, module-name suffix)`, for the module name
+    /// (`crate::names::bundle_stream_of`).
+    const PAIR_DEPTHS: &'static [(usize, &'static str)];
+    /// The name of the format `dp`, as the module name carries it (`g12_i16f11_t20f6_d10`, `e5m10`).
+    fn format_name(dp: &Self::Dp) -> String;
     /// Sets the clock input.
     fn set_clock(&mut self, high: bool);
     /// Drives one clock's inputs (data ports of an absent write or start are driven to zero).
@@ -479,7 +450,7 @@ pub fn stream_in_word_with<B: Copy + Default, X: Copy + Default, R: Copy + Defau
     input: &StreamIn<B, X, R>,
     data: impl Fn(&str, usize, &R, &StreamJob<B, X>) -> Option<u64>,
 ) -> Option<u64> {
-    let (base, idx) = crate::export::split_port(port);
+    let (base, idx) = crate::verilog::split_port(port);
     let (set, ray, r) = input.write.unwrap_or_default();
     let j = input.start.unwrap_or_default();
     Some(match base {
@@ -508,13 +479,15 @@ impl<const G: usize, const V: usize, const D: usize, const T: usize, const CUTS:
 {
     type Dp = BundleFixFormat;
     const PAIR_LATENCY: usize = bundle_fix_latency(CUTS);
+    const CUTS: usize = CUTS;
+    const PAIR_DEPTHS: &'static [(usize, &'static str)] = &BUNDLE_FIX_DEPTHS;
 
     fn for_format(bf: &BundleFixFormat) -> Self {
         Self::new(bf)
     }
 
-    fn module(bf: &BundleFixFormat) -> String {
-        bundle_stream_module_cuts(bf, CUTS)
+    fn format_name(bf: &BundleFixFormat) -> String {
+        bf.name()
     }
 
     fn set_clock(&mut self, high: bool) {

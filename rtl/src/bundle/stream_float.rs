@@ -333,16 +333,6 @@ impl<const E: usize, const M: usize, const N: usize, const CUTS: usize> Logic
     }
 }
 
-/// Module name of the float streaming processor for a format and the pair's cut points, e.g.
-/// `bundle_stream_e5m10_n16x4` (the 9-clock pair) or `bundle_stream_e5m10_p13_n16x4`.
-pub fn bundle_stream_float_module(f: &FloatFormat, cuts: usize) -> String {
-    let depth = crate::cut::depth_suffix(&BUNDLE_FLOAT_DEPTHS, cuts);
-    format!(
-        "bundle_stream_{}{depth}_n{STREAM_RAYS}x{STREAM_SETS}",
-        f.name()
-    )
-}
-
 /// The exported configurations `(format, cut points of the pair)`, in the order of
 /// [`bundle_stream_float_verilog`]: binary32, bfloat16 and binary16 over the 9-clock pair, binary16
 /// over the 13-clock one.
@@ -352,18 +342,6 @@ pub fn bundle_stream_float_configs() -> Vec<(FloatFormat, usize)> {
         (FloatFormat::BF16, 0),
         (FloatFormat::FP16, 0),
         (FloatFormat::FP16, crate::fp::cuts::ALL),
-    ]
-}
-
-/// `(module, Verilog, clocks of a decided job)` of every configuration in
-/// [`bundle_stream_float_configs`] (for `crate::export::export_all`).
-pub fn bundle_stream_float_verilog() -> Vec<(String, String, usize)> {
-    use crate::bundle::stream::bundle_stream_verilog_of;
-    vec![
-        bundle_stream_verilog_of::<crate::BundleStreamFp32>(&FloatFormat::FP32),
-        bundle_stream_verilog_of::<crate::BundleStreamBf16>(&FloatFormat::BF16),
-        bundle_stream_verilog_of::<crate::BundleStreamFp16>(&FloatFormat::FP16),
-        bundle_stream_verilog_of::<crate::BundleStreamFp16P13>(&FloatFormat::FP16),
     ]
 }
 
@@ -426,6 +404,8 @@ impl<const E: usize, const M: usize, const N: usize, const CUTS: usize> BundleSt
 {
     type Dp = FloatFormat;
     const PAIR_LATENCY: usize = bundle_float_latency(CUTS);
+    const CUTS: usize = CUTS;
+    const PAIR_DEPTHS: &'static [(usize, &'static str)] = &BUNDLE_FLOAT_DEPTHS;
 
     fn for_format(f: &FloatFormat) -> Self {
         assert_eq!(
@@ -437,8 +417,8 @@ impl<const E: usize, const M: usize, const N: usize, const CUTS: usize> BundleSt
         Self::new()
     }
 
-    fn module(f: &FloatFormat) -> String {
-        bundle_stream_float_module(f, CUTS)
+    fn format_name(f: &FloatFormat) -> String {
+        f.name()
     }
 
     fn set_clock(&mut self, high: bool) {

@@ -15,7 +15,7 @@
 //! | [`quot_bound::PlaneFracBound`] | `plane/quot_bound.rs` | `golden::plane::fix::cull_fix_fractions` |
 //! | [`quot_cmp::FracCmp`], [`quot_code_cmp::CodeFracCmp`], [`quot_pick::FracPick`], [`quot_tree::FracTree`] | `plane/quot_*.rs` | orderings of quotients by cross-multiplication |
 //!
-//! Which configurations exist: [`registry`]; the float tester's export and dispatch: [`float_export`].
+//! Which configurations exist, and the dispatch over them: [`registry`].
 
 pub mod bound;
 pub mod bound_mul;
@@ -24,7 +24,6 @@ pub mod bound_scale;
 pub mod bound_table;
 pub mod fix;
 pub mod float;
-pub mod float_export;
 pub mod quot;
 pub mod quot_bound;
 pub mod quot_cmp;

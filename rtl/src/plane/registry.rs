@@ -4,6 +4,7 @@
 use super::fix::{PlaneFix, PLANE_FIX_DEEP};
 use super::float::PlaneFloat;
 use super::quot::PlaneFrac;
+use golden::format::float::FloatFormat;
 
 /// The chained slab + cull-plane tester over b12 with the default plane format (`N = 8`, `FD = 11`,
 /// `R = 8`) and `K` planes.
@@ -50,3 +51,69 @@ pub type PlaneFracB12<const K: usize> = PlaneFrac<12, 13, 16, 20, 8, 14, 24, 25,
 pub type PlaneFracB8<const K: usize> = PlaneFrac<8, 9, 12, 14, 8, 11, 20, 21, 20, 19, 40, K>;
 /// The same over b16 (`FD = 14`).
 pub type PlaneFracB16<const K: usize> = PlaneFrac<16, 17, 20, 24, 8, 17, 28, 29, 26, 25, 54, K>;
+
+/// The (float format, planes) pairs with an instantiated `PlaneFloat` (type aliases in `rtl/src/plane/registry.rs`).
+pub const PLANE_FLOAT_CONFIGS: [(FloatFormat, usize); 9] = [
+    (FloatFormat::FP16, 1),
+    (FloatFormat::FP16, 2),
+    (FloatFormat::FP16, 4),
+    (FloatFormat::BF16, 1),
+    (FloatFormat::BF16, 2),
+    (FloatFormat::BF16, 4),
+    (FloatFormat::FP32, 1),
+    (FloatFormat::FP32, 2),
+    (FloatFormat::FP32, 4),
+];
+
+/// Runs `$body` with `$t` bound to the `PlaneFloat` type of a float format and plane count, or returns an
+/// error for a configuration without an instantiated block.
+#[macro_export]
+macro_rules! with_plane_float {
+    ($f:expr, $k:expr, $t:ident, $body:block) => {{
+        let f: &golden::format::float::FloatFormat = $f;
+        let k: usize = $k;
+        match (f.e, f.m, k) {
+            (5, 10, 1) => {
+                type $t = $crate::PlaneFloatE5M10K1;
+                Ok($body)
+            }
+            (5, 10, 2) => {
+                type $t = $crate::PlaneFloatE5M10K2;
+                Ok($body)
+            }
+            (5, 10, 4) => {
+                type $t = $crate::PlaneFloatE5M10K4;
+                Ok($body)
+            }
+            (8, 7, 1) => {
+                type $t = $crate::PlaneFloatE8M7K1;
+                Ok($body)
+            }
+            (8, 7, 2) => {
+                type $t = $crate::PlaneFloatE8M7K2;
+                Ok($body)
+            }
+            (8, 7, 4) => {
+                type $t = $crate::PlaneFloatE8M7K4;
+                Ok($body)
+            }
+            (8, 23, 1) => {
+                type $t = $crate::PlaneFloatE8M23K1;
+                Ok($body)
+            }
+            (8, 23, 2) => {
+                type $t = $crate::PlaneFloatE8M23K2;
+                Ok($body)
+            }
+            (8, 23, 4) => {
+                type $t = $crate::PlaneFloatE8M23K4;
+                Ok($body)
+            }
+            _ => Err(format!(
+                "no PlaneFloat instance for {} with {k} planes: instantiated are e5m10, e8m7, e8m23 \
+                 with 1, 2, 4 planes (add a type alias in rtl/src/plane/registry.rs for another)",
+                f.name()
+            )),
+        }
+    }};
+}

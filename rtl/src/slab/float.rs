@@ -51,7 +51,7 @@ pub const SLAB_FLOAT_LATENCY: usize = slab_float_latency(0);
 pub const SLAB_FLOAT_CUTS_DEEP: usize = cut::ALL;
 
 /// The configurations that are built (exported, tested, timed): `(cuts, name suffix)`; the module name
-/// is `slab_float_<format><suffix>` (`crate::export::slab_float_module_cuts`).
+/// is `slab_float_<format><suffix>` (`crate::names::slab_float_module_cuts`).
 pub const SLAB_FLOAT_DEPTHS: [(usize, &str); 2] = [(0, ""), (SLAB_FLOAT_CUTS_DEEP, "_p13")];
 
 const _: () = assert!(slab_float_latency(SLAB_FLOAT_CUTS_DEEP) == 13);

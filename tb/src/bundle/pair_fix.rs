@@ -194,7 +194,7 @@ pub fn bundle_in_word(
     tag: u16,
     v: &Option<BundleVec>,
 ) -> Result<u64, String> {
-    let (base, idx) = rtl::export::split_port(port);
+    let (base, idx) = rtl::verilog::split_port(port);
     let idx = idx.unwrap_or(0);
     let Some((input, p)) = v else {
         return Ok(0);

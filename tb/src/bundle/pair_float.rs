@@ -218,7 +218,7 @@ pub fn bundle_float_in_word(
     tag: u16,
     v: &Option<FloatBundleVec>,
 ) -> Result<u64, String> {
-    let (base, idx) = rtl::export::split_port(port);
+    let (base, idx) = rtl::verilog::split_port(port);
     let idx = idx.unwrap_or(0);
     let Some((input, p)) = v else {
         return Ok(0);

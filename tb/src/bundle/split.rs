@@ -535,7 +535,7 @@ pub fn run_split<S: BundleSplitIo>(
 
 /// The value of input port `port` (a Verilog name such as `ray_d_lo_1`) in one clock.
 pub fn split_in_word(bf: &BundleFixFormat, port: &str, input: &SplitIn) -> Result<u64, String> {
-    let (base, idx) = rtl::export::split_port(port);
+    let (base, idx) = rtl::verilog::split_port(port);
     let (addr, r) = input.write.unwrap_or_default();
     let j = input.start.unwrap_or_default();
     Ok(match base {

@@ -169,7 +169,7 @@ mod tests {
 
     #[test]
     fn every_split_mutant_finds_its_site() {
-        let (module, text, _) = rtl::bundle::split::bundle_split_verilog()
+        let (module, text, _) = rtl::export::bundle_split_verilog()
             .into_iter()
             .next()
             .unwrap();

@@ -312,7 +312,7 @@ pub fn render(
     }
     s += "## Ports\n\n| port | dir | width | meaning |\n|---|---|---|---|\n";
     for p in ports {
-        let (base, idx) = rtl::export::split_port(&p.name);
+        let (base, idx) = rtl::verilog::split_port(&p.name);
         let meaning = control_port(&p.name, e)
             .or_else(|| {
                 doc.ports

@@ -959,7 +959,7 @@ struct StreamPairText {
 pub fn bundle_stream_doc(bf: &BundleFixFormat, cuts: usize) -> FamilyDoc {
     let fmt = &bf.base;
     stream_doc(StreamPairText {
-        pair: rtl::bundle::pair_fix::bundle_fix_module_cuts(bf, cuts),
+        pair: rtl::names::bundle_fix_module_cuts(bf, cuts),
         kind: "fixed-point".into(),
         params: vec![
             param("G", fmt.g, "grid bits: signed coordinates"),
@@ -991,7 +991,7 @@ pub fn bundle_stream_doc(bf: &BundleFixFormat, cuts: usize) -> FamilyDoc {
 /// points `cuts`.
 pub fn bundle_stream_float_doc(f: &FloatFormat, cuts: usize) -> FamilyDoc {
     let w = f.width();
-    let pair = rtl::bundle::pair_float::bundle_float_module_cuts(f, cuts);
+    let pair = rtl::names::bundle_float_module_cuts(f, cuts);
     let word = |what: &str| format!("{what}, a {w}-bit word");
     stream_doc(StreamPairText {
         pair: pair.clone(),
@@ -1214,7 +1214,8 @@ in the `rst` clock or the clock before still reach them (with `done` low).",
 mod tests {
     use super::*;
     use crate::verilator::{parse_ports, Port};
-    use rtl::export::{catalog, split_port, Exported, Family};
+    use rtl::export::{catalog, Exported, Family};
+    use rtl::verilog::split_port;
     use std::collections::{BTreeMap, BTreeSet, HashSet};
 
     const CONTROL: [&str; 6] = ["clock", "rst", "valid_in", "tag_in", "valid_out", "tag_out"];
@@ -1244,10 +1245,10 @@ mod tests {
         let mut batch: BTreeMap<String, String> = BTreeMap::new();
         for (m, v, _) in rtl::export::plane_verilog()
             .into_iter()
-            .chain(rtl::bundle::pair_fix::bundle_fix_verilog())
-            .chain(rtl::bundle::split::bundle_split_verilog())
-            .chain(rtl::bundle::stream::bundle_stream_verilog())
-            .chain(rtl::bundle::stream_float::bundle_stream_float_verilog())
+            .chain(rtl::export::bundle_fix_verilog())
+            .chain(rtl::export::bundle_split_verilog())
+            .chain(rtl::export::bundle_stream_verilog())
+            .chain(rtl::export::bundle_stream_float_verilog())
         {
             batch.insert(m, v);
         }

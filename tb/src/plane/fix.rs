@@ -34,7 +34,7 @@ impl SlabCtx for CullFixCtx {
     type Box = FixNode;
     type Out = PlaneFixOut;
     fn name(&self) -> String {
-        format!("plane_fix_{}_k{}", self.cf.name(), self.k)
+        rtl::names::plane_fix_module(&self.cf, self.k)
     }
     fn port_value(&self, base: &str, idx: usize, r: &NodeFixRay, n: &FixNode) -> Option<u64> {
         let cf = &self.cf;

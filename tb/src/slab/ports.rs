@@ -152,7 +152,7 @@ pub fn in_word<C: SlabCtx>(
     tag: u16,
     v: &Option<(C::Ray, C::Box)>,
 ) -> Result<u64, String> {
-    let (base, idx) = rtl::export::split_port(port);
+    let (base, idx) = rtl::verilog::split_port(port);
     let idx = idx.unwrap_or(0);
     let Some((r, b)) = v else {
         return Ok(0); // a bubble: valid_in low, data don't care (driven as zero)

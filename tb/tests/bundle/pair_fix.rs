@@ -240,9 +240,10 @@ fn two_ray_mode_never_misses_a_hitting_ray() {
 /// The waveform of an isolated test and three back to back: `valid_out` rises exactly the pair's
 /// latency (3 clocks, 5 for the deep pair) after `valid_in`.
 fn valid_leaves_latency_clocks_after_it_enters<S: BundleFixIo>(bf: BundleFixFormat) {
-    let path = tb::out_dir()
-        .join("vcd")
-        .join(format!("{}_latency.vcd", S::module(&bf)));
+    let path = tb::out_dir().join("vcd").join(format!(
+        "{}_latency.vcd",
+        rtl::names::bundle_fix_of::<S>(&bf)
+    ));
     let tests: Vec<_> = bundle_vectors(bf, 5, 4, false).collect();
     let mut stream = vec![tests[0]];
     stream.extend(std::iter::repeat_n(None, 9));
@@ -271,8 +272,8 @@ fn valid_leaves_latency_clocks_after_it_enters_5_clocks() {
 }
 
 fn export<S: BundleFixIo>(bf: &BundleFixFormat) -> (String, std::path::PathBuf) {
-    let name = S::module(bf);
-    let v = rtl::export::verilog_named(&mut S::for_format(bf), &name);
+    let name = rtl::names::bundle_fix_of::<S>(bf);
+    let v = rtl::verilog::verilog_named(&mut S::for_format(bf), &name);
     let path = tb::verilog_tools::write(&v, &name);
     (v, path)
 }
@@ -295,8 +296,12 @@ fn exported_verilog_is_lint_clean_and_accepted_by_icarus() {
 fn cross_simulate<S: BundleFixIo>(bf: BundleFixFormat, n: u64, lockstep: u64, seed: u64) {
     let start = Instant::now();
     let (v, _) = export::<S>(&bf);
-    let h = tb::verilator::build(&v, &S::module(&bf), &tb::out_dir().join("verilator"))
-        .unwrap_or_else(|e| panic!("{e}"));
+    let h = tb::verilator::build(
+        &v,
+        &rtl::names::bundle_fix_of::<S>(&bf),
+        &tb::out_dir().join("verilator"),
+    )
+    .unwrap_or_else(|e| panic!("{e}"));
     let built = start.elapsed().as_secs_f64();
     let stats = bundle_xsim(
         bf,
@@ -345,7 +350,7 @@ fn verilator_matches_rtl_and_model_5_clocks() {
 /// its tag, and Verilator agrees with rust-hdl clock by clock.
 fn reset_clears_every_valid_bit<S: BundleFixIo>(bf: BundleFixFormat) {
     let (v, _) = export::<S>(&bf);
-    let name = S::module(&bf);
+    let name = rtl::names::bundle_fix_of::<S>(&bf);
     let h = tb::verilator::build(&v, &name, &tb::out_dir().join("verilator"))
         .unwrap_or_else(|e| panic!("{e}"));
     let tests: Vec<_> = bundle_vectors(bf, 41, 400, false).flatten().collect();

@@ -13,7 +13,8 @@ use golden::bundle::edge::ray_hits_exact;
 use golden::bundle::float::{all_hit_float, all_miss_float, FloatBundle};
 use golden::bundle::gen::{BundleGen, BundleKind};
 use golden::format::float::FloatFormat;
-use rtl::bundle::pair_float::{bundle_float_verilog_of, BundleFloatIo, FloatPairInput};
+use rtl::bundle::pair_float::{BundleFloatIo, FloatPairInput};
+use rtl::export::bundle_float_verilog_of;
 use std::time::Instant;
 use tb::bundle::pair_float::{
     bundle_float_model, bundle_float_rtl, bundle_float_vectors, bundle_float_xsim, quantised,
@@ -182,9 +183,10 @@ fn one_ray_on_both_testers_gets_one_sound_answer() {
 fn valid_leaves_latency_clocks_after_it_enters<S: BundleFloatIo + 'static>() {
     with_big_stack(|| {
         let f = S::format();
-        let path = tb::out_dir()
-            .join("vcd")
-            .join(format!("{}_latency.vcd", S::module()));
+        let path = tb::out_dir().join("vcd").join(format!(
+            "{}_latency.vcd",
+            rtl::names::bundle_float_of::<S>()
+        ));
         let tests: Vec<_> = bundle_float_vectors(f, 5, 4, false).collect();
         let mut stream = vec![tests[0]];
         stream.extend(std::iter::repeat_n(None, 16));
@@ -216,7 +218,7 @@ fn valid_leaves_latency_clocks_after_it_enters_13_clocks() {
 
 fn export<S: BundleFloatIo + 'static>() -> (String, std::path::PathBuf) {
     let v = with_big_stack(bundle_float_verilog_of::<S>);
-    let path = tb::verilog_tools::write(&v, &S::module());
+    let path = tb::verilog_tools::write(&v, &rtl::names::bundle_float_of::<S>());
     (v, path)
 }
 
@@ -242,8 +244,12 @@ fn cross_simulate<S: BundleFloatIo + 'static>(n: u64, seed: u64) {
     let f = S::format();
     let start = Instant::now();
     let (v, _) = export::<S>();
-    let h = tb::verilator::build(&v, &S::module(), &tb::out_dir().join("verilator"))
-        .unwrap_or_else(|e| panic!("{e}"));
+    let h = tb::verilator::build(
+        &v,
+        &rtl::names::bundle_float_of::<S>(),
+        &tb::out_dir().join("verilator"),
+    )
+    .unwrap_or_else(|e| panic!("{e}"));
     let built = start.elapsed().as_secs_f64();
     let stats = with_big_stack(move || {
         bundle_float_xsim(
@@ -292,7 +298,7 @@ fn verilator_matches_rtl_and_model_13_clocks() {
 fn reset_clears_every_valid_bit<S: BundleFloatIo + 'static>() {
     let f = S::format();
     let (v, _) = export::<S>();
-    let name = S::module();
+    let name = rtl::names::bundle_float_of::<S>();
     let h = tb::verilator::build(&v, &name, &tb::out_dir().join("verilator"))
         .unwrap_or_else(|e| panic!("{e}"));
     let s = with_big_stack(move || {

@@ -8,7 +8,8 @@
 
 use golden::bundle::fix::{all_hit_fix, BundleFixFormat};
 use golden::bundle::split::{split_with, SplitResult};
-use rtl::bundle::split::{bundle_split_module, split_clocks, BundleSplitIo, SplitJob};
+use rtl::bundle::split::{split_clocks, BundleSplitIo, SplitJob};
+use rtl::names::bundle_split_module;
 use std::time::Instant;
 use tb::bundle::pair_fix::quantised_case;
 use tb::bundle::split::{
@@ -247,7 +248,7 @@ fn split_clocks_follow_the_schedule() {
 
 fn export<S: BundleSplitIo>(bf: &BundleFixFormat) -> (String, std::path::PathBuf) {
     let name = bundle_split_module(bf);
-    let v = rtl::export::verilog_named(&mut S::for_format(bf), &name);
+    let v = rtl::verilog::verilog_named(&mut S::for_format(bf), &name);
     let path = tb::verilog_tools::write(&v, &name);
     (v, path)
 }

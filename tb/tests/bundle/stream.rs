@@ -57,10 +57,10 @@ where
             &mut dut,
             StreamStim::new(dp, seed, clocks),
         )
-        .unwrap_or_else(|e| panic!("{}: {e}", S::module(&dp)));
+        .unwrap_or_else(|e| panic!("{}: {e}", rtl::names::bundle_stream_of::<S>(&dp)));
         println!(
             "{}: {stats:?} match in {:.1} s",
-            S::module(&dp),
+            rtl::names::bundle_stream_of::<S>(&dp),
             start.elapsed().as_secs_f64()
         );
         assert_eq!(stats.clocks, clocks);
@@ -154,19 +154,23 @@ where
             &mut dut,
             StreamStim::new(dp, 51, clocks).with_resets(),
         )
-        .unwrap_or_else(|e| panic!("{}: {e}", S::module(&dp)));
+        .unwrap_or_else(|e| panic!("{}: {e}", rtl::names::bundle_stream_of::<S>(&dp)));
         assert!(stats.resets > clocks / 1000, "{stats:?}");
         assert!(stats.done < stats.taken, "{stats:?}");
         let (v, _) = export::<S>(&dp);
-        let h = tb::verilator::build(&v, &S::module(&dp), &tb::out_dir().join("verilator"))
-            .unwrap_or_else(|e| panic!("{e}"));
+        let h = tb::verilator::build(
+            &v,
+            &rtl::names::bundle_stream_of::<S>(&dp),
+            &tb::out_dir().join("verilator"),
+        )
+        .unwrap_or_else(|e| panic!("{e}"));
         let x = stream_xsim::<S, _>(
             dp,
             &h,
             StreamStim::new(dp, 51, clocks).with_resets(),
             u64::MAX,
         )
-        .unwrap_or_else(|e| panic!("{}: {e}", S::module(&dp)));
+        .unwrap_or_else(|e| panic!("{}: {e}", rtl::names::bundle_stream_of::<S>(&dp)));
         assert_eq!(x, stats);
     })
 }
@@ -182,8 +186,8 @@ fn stream_float_reset_drops_jobs_in_flight_fp16() {
 }
 
 fn export<S: BundleStreamIo>(dp: &S::Dp) -> (String, std::path::PathBuf) {
-    let name = S::module(dp);
-    let v = rtl::export::verilog_named(&mut S::for_format(dp), &name);
+    let name = rtl::names::bundle_stream_of::<S>(dp);
+    let v = rtl::verilog::verilog_named(&mut S::for_format(dp), &name);
     let path = tb::verilog_tools::write(&v, &name);
     (v, path)
 }
@@ -214,14 +218,18 @@ where
     big_stack(move || {
         let start = Instant::now();
         let (v, _) = export::<S>(&dp);
-        let h = tb::verilator::build(&v, &S::module(&dp), &tb::out_dir().join("verilator"))
-            .unwrap_or_else(|e| panic!("{e}"));
+        let h = tb::verilator::build(
+            &v,
+            &rtl::names::bundle_stream_of::<S>(&dp),
+            &tb::out_dir().join("verilator"),
+        )
+        .unwrap_or_else(|e| panic!("{e}"));
         let built = start.elapsed().as_secs_f64();
         let stats = stream_xsim::<S, _>(dp, &h, StreamStim::new(dp, seed, clocks), lockstep)
-            .unwrap_or_else(|e| panic!("{}: {e}", S::module(&dp)));
+            .unwrap_or_else(|e| panic!("{}: {e}", rtl::names::bundle_stream_of::<S>(&dp)));
         println!(
             "{}: {stats:?} (harness ready in {built:.1} s, {:.1} s in all)",
-            S::module(&dp),
+            rtl::names::bundle_stream_of::<S>(&dp),
             start.elapsed().as_secs_f64()
         );
         assert_eq!(stats.clocks, clocks);

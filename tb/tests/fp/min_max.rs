@@ -54,7 +54,7 @@ fn rtl_check<const N: usize>(f: FloatFormat, pairs: &[(u32, u32)]) {
 fn verilog_check<const N: usize>(f: FloatFormat, pairs: Vec<(u32, u32)>) {
     let module = format!("fp_min_max_{}", f.name());
     let mut u = FpMinMax::<N>::new(&f);
-    let v = rtl::export::verilog_named(&mut u, &module);
+    let v = rtl::verilog::verilog_named(&mut u, &module);
     let path = tb::verilog_tools::write(&v, &module);
     tb::verilog_tools::lint(&path).unwrap_or_else(|e| panic!("{e}"));
     tb::verilog_tools::icarus(&path).unwrap_or_else(|e| panic!("{e}"));

@@ -4,7 +4,8 @@
 use golden::format::float::{FloatFormat, Rounding};
 use rand::{Rng, SeedableRng};
 use rand_pcg::Pcg64;
-use rtl::export::{fp_add_verilog, fp_mul_verilog, fp_unit_module};
+use rtl::export::{fp_add_verilog, fp_mul_verilog};
+use rtl::names::fp_unit_module;
 
 fn lint_and_icarus(v: &str, module: &str) {
     let path = tb::verilog_tools::write(v, module);

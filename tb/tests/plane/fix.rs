@@ -126,7 +126,7 @@ fn a_wrong_model_is_caught() {
 /// In the waveform, `valid_out` rises exactly the configuration's latency after `valid_in`.
 fn valid_leaves_latency_clocks_after_it_enters<S: PlaneFixIo>(want: usize) {
     let c = ctx(FixFormat::b12(), S::PLANES);
-    let name = rtl::export::plane_fix_module_of::<S>(&c.cf);
+    let name = rtl::names::plane_fix_module_of::<S>(&c.cf);
     let path = tb::out_dir()
         .join("vcd")
         .join(format!("{name}_latency.vcd"));
@@ -160,8 +160,8 @@ fn valid_leaves_11_clocks_after_it_enters_in_the_deep_configuration() {
 
 /// `(module name, Verilog, path)` of the tester `S` over `c`'s format, written for the tools.
 fn export<S: PlaneFixIo>(c: &CullFixCtx) -> (String, String, std::path::PathBuf) {
-    let name = rtl::export::plane_fix_module_of::<S>(&c.cf);
-    let v = rtl::export::verilog_named(&mut S::for_format(&c.cf), &name);
+    let name = rtl::names::plane_fix_module_of::<S>(&c.cf);
+    let v = rtl::verilog::verilog_named(&mut S::for_format(&c.cf), &name);
     let path = tb::verilog_tools::write(&v, &name);
     (name, v, path)
 }

@@ -7,8 +7,9 @@
 //! fitted planes, raw bit patterns every third test, a bubble every ninth cycle.
 
 use golden::plane::float::CullFloatFormat;
+use rtl::export::plane_float_verilog;
+use rtl::names::plane_float_module;
 use rtl::plane::float::PlaneFloatIo;
-use rtl::plane::float_export::{plane_float_module, plane_float_verilog};
 use tb::plane::float::{node_stream, with_big_stack, CullFloatCtx};
 use tb::slab::ports::xsim;
 

@@ -77,7 +77,7 @@ impl SlabCtx for FracCtx {
     type Box = FixNode;
     type Out = PlaneFracOut;
     fn name(&self) -> String {
-        rtl::export::plane_frac_module(self.cf(), self.0.k)
+        rtl::names::plane_frac_module(self.cf(), self.0.k)
     }
     fn port_value(&self, base: &str, idx: usize, r: &NodeFixRay, n: &FixNode) -> Option<u64> {
         self.0.port_value(base, idx, r, n)
@@ -260,7 +260,7 @@ fn a_wrong_model_is_caught() {
 
 fn export<S: PlaneFracIo>(c: &FracCtx) -> (String, std::path::PathBuf) {
     let name = c.name();
-    let v = rtl::export::verilog_named(&mut S::for_format(c.cf()), &name);
+    let v = rtl::verilog::verilog_named(&mut S::for_format(c.cf()), &name);
     let path = tb::verilog_tools::write(&v, &name);
     (v, path)
 }

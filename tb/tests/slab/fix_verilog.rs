@@ -5,9 +5,8 @@
 
 use golden::format::fixed::FixFormat;
 use golden::slab::gen::GenKind;
-use rtl::export::{
-    slab_fix_deep_verilog, slab_fix_module, slab_fix_module_cuts, slab_fix_verilog_of,
-};
+use rtl::export::{slab_fix_deep_verilog, slab_fix_verilog_of};
+use rtl::names::{slab_fix_module, slab_fix_module_cuts};
 use rtl::slab::fix::SlabFixIo;
 use rust_hdl::prelude::Block;
 use std::path::PathBuf;

@@ -5,7 +5,8 @@
 use golden::format::float::FloatFormat;
 use golden::slab::float::{quantize_box, quantize_ray};
 use golden::slab::gen::GenKind;
-use rtl::export::{slab_float_module_cuts, slab_float_verilog_of};
+use rtl::export::slab_float_verilog_of;
+use rtl::names::slab_float_module_cuts;
 use rtl::slab::float::SlabFloatIo;
 use tb::slab::ports::xsim;
 

@@ -5,8 +5,8 @@
 //! edge's product, or this clock's), at widths where the saturation is reached from both sides and where it
 //! cannot be reached (its comparisons become constants).
 
-use rtl::export::verilog_named;
 use rtl::slab::mul_round::MulRound;
+use rtl::verilog::verilog_named;
 
 /// Runs every `(a, m)` through the Verilog of `unit` (named `name`) in Icarus, a clock edge after
 /// each, then the operands' complements, and returns `y` per input in the order a = 0.., m = 0..

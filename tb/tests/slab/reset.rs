@@ -13,7 +13,7 @@ use tb::reset::check_block;
 const TESTS: usize = 400;
 
 fn fix<S: SlabFixIo>(fmt: FixFormat, seed: u64) {
-    let module = rtl::export::slab_fix_module_cuts(&fmt, S::CUTS);
+    let module = rtl::names::slab_fix_module_cuts(&fmt, S::CUTS);
     let v = rtl::export::slab_fix_verilog_of::<S>(&fmt);
     let tests: Vec<_> = slab_vectors(fmt, GenKind::Mixed, seed, TESTS as u64, false)
         .flatten()
@@ -36,7 +36,7 @@ fn fix_b12_6_clocks_reset_clears_every_valid_bit() {
 fn float<S: SlabFloatIo>(seed: u64) {
     use golden::slab::float::{quantize_box, quantize_ray};
     let f = S::format();
-    let module = rtl::export::slab_float_module_cuts(&f, S::CUTS);
+    let module = rtl::names::slab_float_module_cuts(&f, S::CUTS);
     let v = rtl::export::slab_float_verilog_of::<S>();
     let (lo, hi) = tb::campaign::campaign_bounds();
     let tests: Vec<_> = golden::slab::gen::SlabGen::new(GenKind::Mixed, lo, hi, 1.0 / 64.0, seed)
