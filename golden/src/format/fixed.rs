@@ -566,6 +566,16 @@ pub fn ceil_pow2(x: f64, e: i32) -> Option<i64> {
     floor_pow2(-x, e).map(|v| -v)
 }
 
+/// Two's complement code of `v` in `n` bits.
+pub fn code(v: i64, n: usize) -> u64 {
+    (v as u64) & if n == 64 { u64::MAX } else { (1u64 << n) - 1 }
+}
+
+/// Sign-extends an `n`-bit two's complement code.
+pub fn sext(v: u64, n: usize) -> i64 {
+    ((v << (64 - n)) as i64) >> (64 - n)
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;

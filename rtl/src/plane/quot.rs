@@ -3,7 +3,7 @@
 //! `t* = num * 2^E / den` (t code units, `E = FD + FT - 1`) and ordered against the others and against
 //! the slab's t codes by cross-multiplication, so no division, reciprocal table or rounding appears
 //! anywhere. Fully pipelined (one node test per clock), [`PLANE_FRAC_LATENCY`] clocks. Its result is
-//! `golden::plane::fix::cull_fix_fractions` exactly (value for value; [`node_frac`] is the bit-accurate
+//! `golden::plane::fix::cull_fix_fractions` exactly (value for value; [`node_frac`](golden::plane::quot::node_frac) is the bit-accurate
 //! model, which also fixes the tie-breaking); compare [`crate::plane::fix::PlaneFix`], the table option,
 //! built on the same front end.
 //!
@@ -39,117 +39,18 @@
 
 use crate::delay::Delay3;
 use crate::io::SlabIo;
-use crate::plane::quot_bound::{frac_effect, PlaneFracBound};
+use crate::plane::quot_bound::PlaneFracBound;
 use crate::plane::quot_cmp::FracCmp;
-use crate::plane::quot_code_cmp::{code_frac_cmp, CodeFracCmp};
-use crate::plane::quot_tree::{frac_tree, FracTree};
+use crate::plane::quot_code_cmp::CodeFracCmp;
+use crate::plane::quot_tree::FracTree;
 use crate::plane::sums::PlaneSums;
 use crate::slab::fix::{code, sext, SlabFix, TAG_BITS};
-use golden::exact::{dyadic, Ext};
-use golden::plane::fix::{plane_sums, CullFixFormat, FixNode, NodeFixRay, MAX_PLANES};
-use golden::slab::fix::slab_fix;
+use golden::plane::fix::{CullFixFormat, FixNode, NodeFixRay, MAX_PLANES};
+use golden::plane::quot::{frac_den_bits, frac_scale, Frac, PlaneFracOut};
 use rust_hdl::prelude::*;
-use std::cmp::Ordering;
 
 /// Clocks from a node test entering `PlaneFrac` to its result leaving.
 pub const PLANE_FRAC_LATENCY: usize = 6;
-
-/// A bound as the fraction option outputs it: `den != 0`, the plane bound `num * 2^E / den` in t code
-/// units; `den == 0`, the slab's t code `num`.
-#[derive(Clone, Copy, Debug, PartialEq, Eq, Default)]
-pub struct Frac {
-    pub num: i64,
-    pub den: u64,
-}
-
-/// Output of the fraction option: the cull decision and the interval as chosen fractions.
-#[derive(Clone, Copy, Debug, PartialEq, Eq, Default)]
-pub struct PlaneFracOut {
-    pub hit: bool,
-    pub t_entry: Frac,
-    pub t_exit: Frac,
-}
-
-/// The bound scale exponent `E = FD + FT - 1`: a fraction `num / den` is `num * 2^E / den` t code units.
-pub fn frac_scale(cf: &CullFixFormat) -> u32 {
-    cf.fd + cf.base.ft - 1
-}
-
-/// Denominator bits `MB = EB - 1` of the fraction option.
-pub fn frac_den_bits(cf: &CullFixFormat) -> u32 {
-    cf.den_bits() - 1
-}
-
-/// The exact value of a [`Frac`] in t code units, as `cull_fix_fractions` returns it.
-pub fn frac_value(cf: &CullFixFormat, f: &Frac) -> Ext {
-    let fmt = &cf.base;
-    if f.den != 0 {
-        Ext::Fin(dyadic(f.num, frac_scale(cf) as i32) / dyadic(f.den as i64, 0))
-    } else if f.num == fmt.t_neg_inf() {
-        Ext::NegInf
-    } else if f.num == fmt.t_pos_inf() {
-        Ext::PosInf
-    } else {
-        Ext::Fin(dyadic(f.num, 0))
-    }
-}
-
-/// The order of a t code and a plane fraction, the `+-inf` codes as infinities.
-fn code_vs(cf: &CullFixFormat, c: i64, (num, den): (i64, u64)) -> Ordering {
-    if c == cf.base.t_neg_inf() {
-        Ordering::Less
-    } else if c == cf.base.t_pos_inf() {
-        Ordering::Greater
-    } else {
-        code_frac_cmp(frac_scale(cf), c, num, den)
-    }
-}
-
-/// The bit-accurate model of [`PlaneFrac`] (and of every tie it breaks): slab test then `k` planes, the
-/// bounds as fractions. Its values are `cull_fix_fractions`' for every node whose `den` intervals are
-/// not inverted (all that quantisation produces; the model of record has no value for a zero `den`).
-pub fn node_frac(cf: &CullFixFormat, k: usize, r: &NodeFixRay, n: &FixNode) -> PlaneFracOut {
-    let slab = slab_fix(&cf.base, &r.ray, &n.b);
-    let (sb, eb) = (cf.s_bits() as usize, cf.den_bits() as usize);
-    let mb = frac_den_bits(cf) as usize;
-    let (mut en, mut ex, mut par) = ([None; MAX_PLANES], [None; MAX_PLANES], false);
-    for (i, p) in n.planes[..k].iter().enumerate() {
-        let (s, dl, dh) = plane_sums(&r.ray, &r.dir, &n.b, p);
-        // The sums as the RTL's registers hold them.
-        let e = frac_effect(
-            sb,
-            mb,
-            sext(code(s, sb), sb),
-            sext(code(dl, eb), eb),
-            sext(code(dh, eb), eb),
-        );
-        let f = (e.num, e.den);
-        en[i] = e.is_entry.then_some(f);
-        ex[i] = e.is_exit.then_some(f);
-        par |= e.par;
-    }
-    let pe = frac_tree(false, en);
-    let px = frac_tree(true, ex);
-    let entry = match pe {
-        Some(f) if code_vs(cf, slab.t_entry, f) == Ordering::Less => Frac { num: f.0, den: f.1 },
-        _ => Frac {
-            num: slab.t_entry,
-            den: 0,
-        },
-    };
-    let exit = match px {
-        Some(f) if code_vs(cf, slab.t_exit, f) == Ordering::Greater => Frac { num: f.0, den: f.1 },
-        _ => Frac {
-            num: slab.t_exit,
-            den: 0,
-        },
-    };
-    PlaneFracOut {
-        hit: slab.hit && !par && frac_value(cf, &entry) <= frac_value(cf, &exit),
-        t_entry: entry,
-        t_exit: exit,
-    }
-}
 
 /// The fraction option of the chained fixed tester; see the module documentation.
 #[derive(LogicBlock)]
@@ -387,17 +288,6 @@ impl<
     fn for_format(cf: &CullFixFormat) -> Self {
         Self::new(cf)
     }
-}
-
-/// The packed output word of a fraction (the ports' layout), for testbenches.
-pub fn frac_word(cf: &CullFixFormat, f: &Frac) -> u64 {
-    let sb = cf.s_bits() as usize;
-    let low = if f.den == 0 {
-        code(f.num, cf.base.t as usize)
-    } else {
-        code(f.num, sb)
-    };
-    (f.den << sb) | low
 }
 
 impl<

@@ -22,6 +22,7 @@
 //! Outputs `is_entry`, `is_exit`, `par`, `num`, `den` (the last two meaningful for an entry or exit plane).
 
 use crate::slab::fix::{code, sext};
+use golden::plane::quot::frac_effect;
 use rust_hdl::prelude::*;
 
 /// One plane's effect as a fraction; see the module documentation.
@@ -35,16 +36,6 @@ pub struct PlaneFracBound<const SB: usize, const EB: usize, const MB: usize> {
     pub is_entry: Signal<Out, Bit>,
     pub is_exit: Signal<Out, Bit>,
     pub par: Signal<Out, Bit>,
-}
-
-/// What [`PlaneFracBound`] outputs, as native values (`num` sign-extended).
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
-pub struct FracEffect {
-    pub is_entry: bool,
-    pub is_exit: bool,
-    pub par: bool,
-    pub num: i64,
-    pub den: u64,
 }
 
 impl<const SB: usize, const EB: usize, const MB: usize> Default for PlaneFracBound<SB, EB, MB> {
@@ -63,26 +54,6 @@ impl<const SB: usize, const EB: usize, const MB: usize> Default for PlaneFracBou
             is_exit: Default::default(),
             par: Default::default(),
         }
-    }
-}
-
-/// The native model of [`PlaneFracBound`] with `sb` numerator and `mb` denominator bits, bit for bit the
-/// Verilog.
-pub fn frac_effect(sb: usize, mb: usize, s: i64, dl: i64, dh: i64) -> FracEffect {
-    let ex = dl > 0;
-    let en = !ex && dh < 0;
-    let mag = match (ex, s > 0, s < 0) {
-        (true, true, _) => dh,
-        (true, false, _) => dl,
-        (false, _, true) => -dh,
-        (false, _, false) => -dl,
-    };
-    FracEffect {
-        is_entry: en,
-        is_exit: ex,
-        par: !ex && !en && dl == 0 && dh == 0 && s > 0,
-        num: sext(code(if ex { -s } else { s }, sb), sb),
-        den: code(mag, mb),
     }
 }
 

@@ -29,6 +29,7 @@
 //! ```
 
 use crate::slab::fix::sext;
+use golden::plane::quot::frac_lt;
 use rust_hdl::prelude::*;
 
 /// Cross-multiplied comparison of two fractions; see the module documentation.
@@ -55,11 +56,6 @@ impl<const AB: usize, const MB: usize> Default for FracCmp<AB, MB> {
             lt: Default::default(),
         }
     }
-}
-
-/// The native model: `a_num * b_den < b_num * a_den`, exactly.
-pub fn frac_lt(a_num: i64, a_den: u64, b_num: i64, b_den: u64) -> bool {
-    (a_num as i128) * (b_den as i128) < (b_num as i128) * (a_den as i128)
 }
 
 impl<const AB: usize, const MB: usize> Logic for FracCmp<AB, MB> {

@@ -16,6 +16,7 @@
 //! [`crate::plane::quot_cmp::FracCmp`].
 
 use crate::slab::fix::sext;
+use golden::plane::quot::code_frac_cmp;
 use rust_hdl::prelude::*;
 use std::cmp::Ordering;
 
@@ -48,11 +49,6 @@ impl<const T: usize, const AB: usize, const MB: usize> CodeFracCmp<T, AB, MB> {
             greater: Constant::new(greater),
         }
     }
-}
-
-/// The native model: the order of `c * den` and `num * 2^e`, exactly.
-pub fn code_frac_cmp(e: u32, c: i64, num: i64, den: u64) -> Ordering {
-    ((c as i128) * (den as i128)).cmp(&((num as i128) << e))
 }
 
 /// `name` = the signed `from`-bit wire `src` sign-extended to `to` bits, as a Verilog declaration.

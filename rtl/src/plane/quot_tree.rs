@@ -9,7 +9,7 @@
 //!
 //! # Outputs (three clocks after the inputs)
 //! `v_out`, `n_out`, `d_out`: the winning slot, exactly (no rounding anywhere). Ties go to the lower slot;
-//! [`frac_tree`] is the native model, with the same tie-breaking.
+//! [`frac_tree`](golden::plane::quot::frac_tree) is the native model, with the same tie-breaking.
 //!
 //! # Structure
 //! Seven [`FracPick`] nodes, each followed by a register (`_q`): nodes 0-3 compare slot pairs, 4-5 the
@@ -18,12 +18,10 @@
 //! granularity for Verilator, UNOPTFLAT). Slots that a parent ties to constants (unused planes) take
 //! their comparators with them in synthesis.
 
-use crate::plane::quot_cmp::frac_lt;
 use crate::plane::quot_pick::FracPick;
+pub use golden::plane::quot::FRAC_TREE_SLOTS;
 use rust_hdl::prelude::*;
 
-/// Slots of the tree.
-pub const FRAC_TREE_SLOTS: usize = 8;
 /// Clocks from the slots in to the result out.
 pub const FRAC_TREE_LATENCY: usize = 3;
 
@@ -60,33 +58,6 @@ impl<const AB: usize, const MB: usize> FracTree<AB, MB> {
             d_q: Default::default(),
         }
     }
-}
-
-/// The native model of [`FracTree`]: the winner of `slots` (`None` empty, else `(num, den)`), pairwise
-/// in the tree's order, the higher slot of a pair winning only when strictly better.
-pub fn frac_tree(
-    want_min: bool,
-    slots: [Option<(i64, u64)>; FRAC_TREE_SLOTS],
-) -> Option<(i64, u64)> {
-    let better = |x: (i64, u64), y: (i64, u64)| {
-        if want_min {
-            frac_lt(x.0, x.1, y.0, y.1)
-        } else {
-            frac_lt(y.0, y.1, x.0, x.1)
-        }
-    };
-    let mut level = slots.to_vec();
-    while level.len() > 1 {
-        level = level
-            .chunks(2)
-            .map(|p| match (p[0], p[1]) {
-                (a, None) => a,
-                (None, b) => b,
-                (Some(a), Some(b)) => Some(if better(b, a) { b } else { a }),
-            })
-            .collect();
-    }
-    level[0]
 }
 
 impl<const AB: usize, const MB: usize> Logic for FracTree<AB, MB> {

@@ -99,15 +99,7 @@ pub const SLAB_FIX_DEPTHS: [(usize, &str); 2] = [(SLAB_FIX_CUTS, ""), (SLAB_FIX_
 /// Width of the opaque tag that travels with every test.
 pub const TAG_BITS: usize = 16;
 
-/// Two's complement code of `v` in `n` bits.
-pub fn code(v: i64, n: usize) -> u64 {
-    (v as u64) & if n == 64 { u64::MAX } else { (1u64 << n) - 1 }
-}
-
-/// Sign-extends an `n`-bit two's complement code.
-pub fn sext(v: u64, n: usize) -> i64 {
-    ((v << (64 - n)) as i64) >> (64 - n)
-}
+pub use golden::format::fixed::{code, sext};
 
 /// The fixed-point slab tester; see the module documentation. `CUTS` chooses its registers ([`cut`]).
 #[derive(LogicBlock)]

@@ -7,8 +7,9 @@
 use golden::exact::{ExactHit, Ext};
 use golden::format::fixed::FixFormat;
 use golden::plane::fix::{cull_fix_fractions, CullFixFormat, FixNode, NodeFixRay};
+use golden::plane::quot::{frac_value, frac_word, node_frac, Frac, PlaneFracOut};
 use golden::slab::fix::slab_fix;
-use rtl::plane::quot::{frac_value, frac_word, node_frac, Frac, PlaneFracIo, PlaneFracOut};
+use rtl::plane::quot::PlaneFracIo;
 use rtl::slab::fix::sext;
 use std::cell::Cell;
 use tb::dut::run_checked;
