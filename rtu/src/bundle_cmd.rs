@@ -5,7 +5,7 @@
 //! processor's rule). The
 //! traversal and its checks are [`golden::bundle::traverse`]; the bundling [`golden::bundle::build`].
 
-use crate::list;
+use crate::opts::list;
 use golden::bundle::build::{build, tiles, BuildParams, Built, SplitMetric};
 use golden::bundle::fix::BundleFixFormat;
 use golden::bundle::traverse::{

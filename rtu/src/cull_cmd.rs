@@ -1,6 +1,7 @@
 //! `rtu cull-campaign` and `rtu cull-scenes`: the cull-plane tester's conservativeness campaign against
 //! the exact clip and the exact triangle test, and the triangle tests it saves on scenes.
 
+use crate::opts::{fix_formats, float_formats, list, parse_k};
 use golden::format::fixed::{FixFormat, GridMap};
 use golden::geom::Ray;
 use golden::plane::fix::CullFixFormat;
@@ -298,4 +299,63 @@ pub fn scenes(
          against the exact ray-triangle test on every triangle below them: none hides a hit."
     );
     Ok(table)
+}
+
+/// Options of `rtu cull-campaign`.
+#[derive(clap::Args, Clone, Debug)]
+pub struct CampaignArgs {
+    /// Cases per datapath, format and K (half uniform, half adversarial).
+    #[arg(long, default_value_t = 1_000_000)]
+    pub vectors: u64,
+    /// Planes per node, comma separated.
+    #[arg(long, default_value = "4")]
+    pub k: String,
+    /// Fixed formats (b8, b12, b16), comma separated; empty for none.
+    #[arg(long, default_value = "b8,b12,b16")]
+    pub fixed: String,
+    /// Float formats (fp32, bf16, fp16, eXmY), comma separated; empty for none.
+    #[arg(long, default_value = "fp32,bf16,fp16")]
+    pub float: String,
+    #[arg(long, default_value_t = 1)]
+    pub seed: u64,
+}
+
+/// `rtu cull-campaign`: [`campaign`] over the options' planes and formats; prints the table and writes
+/// it to `out/cull_campaign.md`.
+pub fn campaign_cmd(a: &CampaignArgs, out: &Path) -> Result<(), String> {
+    let ks = list(&a.k, parse_k)?;
+    let (fx, fl) = (fix_formats(&a.fixed)?, float_formats(&a.float)?);
+    let t = campaign(a.vectors, &ks, &fx, &fl, a.seed)?;
+    print!("{t}");
+    std::fs::create_dir_all(out).map_err(|e| format!("{}: {e}", out.display()))?;
+    crate::out_file::write_file(&out.join("cull_campaign.md"), t)
+}
+
+/// Options of `rtu cull-scenes`.
+#[derive(clap::Args, Clone, Debug)]
+pub struct ScenesArgs {
+    /// Scenes, comma-separated: built-in names (grass, room, mesh, soup) or OBJ files (`*.obj`).
+    #[arg(long, default_value = "grass,room,mesh")]
+    pub scenes: String,
+    #[arg(long, default_value = "1,2,4,8")]
+    pub k: String,
+    #[arg(long, default_value = "b12,b16")]
+    pub fixed: String,
+    #[arg(long, default_value = "bf16,fp16,fp32")]
+    pub float: String,
+    #[arg(long, default_value_t = 64)]
+    pub width: usize,
+    #[arg(long, default_value_t = 48)]
+    pub height: usize,
+}
+
+/// `rtu cull-scenes`: [`scenes`] over the options; prints the table and writes it to
+/// `out/cull_scenes.md`.
+pub fn scenes_cmd(a: &ScenesArgs, out: &Path) -> Result<(), String> {
+    let ks = list(&a.k, parse_k)?;
+    let (fx, fl) = (fix_formats(&a.fixed)?, float_formats(&a.float)?);
+    let names = list(&a.scenes, |s| Ok(s.to_string()))?;
+    let t = scenes(&names, &ks, &fx, &fl, a.width, a.height, out)?;
+    print!("{t}");
+    crate::out_file::write_file(&out.join("cull_scenes.md"), t)
 }

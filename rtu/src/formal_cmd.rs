@@ -134,7 +134,7 @@ pub fn run(a: &Args, out: &Path) -> Result<String, String> {
     let verilog = dir.join("verilog");
     rtl::export::export_all(&verilog).map_err(|e| format!("{}: {e}", verilog.display()))?;
     let mut ps = proofs(a.quick, &verilog)?;
-    let keys = |s: &str| crate::list(s, |k| Ok(k.to_string()));
+    let keys = |s: &str| crate::opts::list(s, |k| Ok(k.to_string()));
     if let Some(only) = &a.only {
         let keys = keys(only)?;
         ps.retain(|p| keys.iter().any(|k| p.name.contains(k.as_str())));

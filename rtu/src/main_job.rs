@@ -363,3 +363,72 @@ pub fn table(rows: &[Row]) -> String {
     }
     s
 }
+
+/// Options of the main job (`rtu`, `rtu scene`).
+#[derive(clap::Args, Clone, Debug)]
+pub struct Args {
+    /// Image width in rays.
+    #[arg(long, default_value_t = 48)]
+    pub width: usize,
+    /// Image height in rays.
+    #[arg(long, default_value_t = 32)]
+    pub height: usize,
+    /// Instead of the default room of boxes, a triangle scene: a built-in name (room, grass, mesh,
+    /// soup) or an OBJ file; the boxes are its BVH's first 48 nodes, the rays its camera's, and the
+    /// small sweep runs on it.
+    #[arg(long)]
+    pub scene: Option<String>,
+}
+
+impl Default for Args {
+    /// What `rtu` with no command runs: the default room, 48 x 32 rays.
+    fn default() -> Self {
+        Args {
+            width: 48,
+            height: 32,
+            scene: None,
+        }
+    }
+}
+
+/// The front door (`rtu`, `rtu scene`): the scene through every preset slab tester ([`run`]), its
+/// summary printed and its files written under `out`; an error when a result violates conservativeness
+/// or the RTL differs from the model; then the small sweep on the same scene (`out/sweep`).
+pub fn front_door(a: &Args, out: &Path) -> Result<(), String> {
+    let scene = match &a.scene {
+        None => crate::scene::room(a.width, a.height),
+        Some(name) => crate::sweep_cmd::load_scene(name, 1)
+            .and_then(|ts| crate::scene::from_tri(&ts, a.width, a.height, 48))?,
+    };
+    let (rows, _) = run(&scene, out)?;
+    println!("\n{}", table(&rows));
+    println!(
+        "wrote {}/report.md, {}/summary.csv, {}/verilog/, {}/vcd/",
+        out.display(),
+        out.display(),
+        out.display(),
+        out.display()
+    );
+    if rows
+        .iter()
+        .any(|r| r.violations > 0 || r.rtl_model_mismatches > 0)
+    {
+        return Err("conservativeness violations or RTL/model mismatches: see above".to_string());
+    }
+    // The small version of the sweep: speed against accuracy on the triangle room.
+    let mut sweep = crate::sweep_cmd::Args::small();
+    if let Some(name) = &a.scene {
+        sweep.scenes = name.clone();
+    }
+    let dir = out.join("sweep");
+    let t = crate::sweep_cmd::run(&sweep, &dir)?;
+    println!(
+        "\nSpeed against accuracy (small sweep: {}):\n\n{t}",
+        sweep.describe()
+    );
+    println!(
+        "wrote {}/sweep.csv, sweep.md and the charts sweep_*.svg",
+        dir.display()
+    );
+    Ok(())
+}

@@ -13,7 +13,7 @@ use golden::slab::vectors::{
     Vector, MAX_VECTOR_PLANES,
 };
 use std::io::{BufRead, BufReader, Read};
-use std::path::Path;
+use std::path::{Path, PathBuf};
 use std::sync::{Arc, Mutex};
 use tb::engine::{run_cull_fix, run_cull_float, run_fix, run_float, Engine};
 use tb::plane::fix::{fix_vector, CullFixCtx};
@@ -279,4 +279,85 @@ pub fn gen(kind: GenKind, n: u64, seed: u64, output: Option<&Path>) -> Result<()
         .map_err(|e| w.err(e))?;
     }
     w.commit()
+}
+
+/// Options of `rtu run`.
+#[derive(clap::Args, Clone, Debug)]
+pub struct RunArgs {
+    /// Input vectors (`.csv` is CSV, anything else JSON lines; `-` reads JSON lines from stdin).
+    pub input: PathBuf,
+    /// Where to write results (same format as the input); stdout when absent.
+    #[arg(long, short)]
+    pub output: Option<PathBuf>,
+    /// model, rtl or verilator.
+    #[arg(long, default_value = "model")]
+    pub engine: tb::engine::Engine,
+    /// Format: fixed b8, b12, b16 or G,I,FI,T,FT; float fp32, fp16, bf16 or eXmY. The rtl and verilator
+    /// engines take the instantiated ones (fixed presets; e8m23, e8m15, e8m7, e5m10, e6m5).
+    #[arg(long, default_value = "b16")]
+    pub format: String,
+    /// Run the chained slab + cull-plane tester with this many planes per node (0 to 8; the rtl and
+    /// verilator engines take 1 to 8 with b8, b12, b16 and 1, 2, 4 with fp16, bf16, fp32); each
+    /// vector's planes (`planes` in JSON, `p0_nx..p7_w` in CSV) are fitted outward into the format.
+    #[arg(long)]
+    pub planes: Option<usize>,
+    /// Fixed formats: scene bounds `x0,y0,z0,x1,y1,z1` for the grid; by default the bounds of the file's
+    /// origins and boxes.
+    #[arg(long)]
+    pub bounds: Option<String>,
+    /// Write a waveform of the run here (rtl engine).
+    #[arg(long)]
+    pub vcd: Option<PathBuf>,
+    /// The input is bundle vectors (JSON lines: a bundle by its rays or its bounds, and a box) for the
+    /// AllHit / AnyHit pair and the results processor (model engine; rtl engine on b8, b12, b16).
+    #[arg(long)]
+    pub bundles: bool,
+}
+
+/// `rtu run`: a file of slab or cull-plane vectors ([`run`]), or of bundle vectors with `--bundles`
+/// ([`crate::run_bundles::run`]).
+pub fn run_cmd(a: &RunArgs, out: &Path) -> Result<(), String> {
+    if a.bundles {
+        if a.planes.is_some() {
+            return Err("--bundles does not take --planes".to_string());
+        }
+        let grid = a.bounds.as_deref().map(parse_bounds).transpose()?;
+        return crate::run_bundles::run(
+            &a.input,
+            a.output.as_deref(),
+            a.engine,
+            &a.format,
+            grid,
+            a.vcd.as_deref(),
+        );
+    }
+    run(
+        &a.input,
+        a.output.as_deref(),
+        a.engine,
+        &a.format,
+        a.planes,
+        a.bounds.as_deref(),
+        a.vcd.as_deref(),
+        out,
+    )
+}
+
+/// Options of `rtu gen`.
+#[derive(clap::Args, Clone, Debug)]
+pub struct GenArgs {
+    #[arg(long, default_value = "mixed")]
+    pub kind: golden::slab::gen::GenKind,
+    #[arg(long, short, default_value_t = 1000)]
+    pub n: u64,
+    #[arg(long, default_value_t = 1)]
+    pub seed: u64,
+    /// Output file (`.csv` for CSV); stdout when absent.
+    #[arg(long, short)]
+    pub output: Option<PathBuf>,
+}
+
+/// `rtu gen`: [`gen`] with its options.
+pub fn gen_cmd(a: &GenArgs) -> Result<(), String> {
+    gen(a.kind, a.n, a.seed, a.output.as_deref())
 }

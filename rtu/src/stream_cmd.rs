@@ -6,7 +6,7 @@
 //! decided jobs alone as one stream (bundle tests per clock). The streams and the replay are
 //! `tb::bundle::stream_scene`.
 
-use crate::list;
+use crate::opts::list;
 use golden::bundle::fix::BundleFixFormat;
 use golden::format::fixed::FixFormat;
 use golden::format::float::FloatFormat;

@@ -6,7 +6,7 @@
 //! tester cycles against area, cycles per ray against area) with the Pareto front drawn.
 
 use crate::chart::{scatter_chart, Point};
-use crate::list;
+use crate::opts::list;
 use golden::bundle::build::{build, tiles, BuildParams, Built};
 use golden::bundle::fix::BundleFixFormat;
 use golden::bundle::traverse::BundlePath;

@@ -90,7 +90,7 @@ pub fn run(a: &Args, out: &Path) -> Result<String, String> {
     if a.width == 0 || a.height == 0 {
         return Err("--width and --height must be at least 1".into());
     }
-    let sets = crate::list(&a.sets, |s| Ok(s.to_string()))?;
+    let sets = crate::opts::list(&a.sets, |s| Ok(s.to_string()))?;
     let sc = load_scene(&a.scene, a.seed)?;
     let p = Prepared::new(&sc, a.width, a.height, a.seed, &sets, a.offset)?;
     let planes = if a.k > 0 {
