@@ -138,51 +138,19 @@ where
     if engine == Engine::Model {
         return run_model(ctx, tests, vcd, sink);
     }
-    let a = (engine, ctx, tests, verilator_dir, vcd, sink);
-    match ctx.k {
-        1 => cull_fix_k::<1, _, _, _>(a),
-        2 => cull_fix_k::<2, _, _, _>(a),
-        3 => cull_fix_k::<3, _, _, _>(a),
-        4 => cull_fix_k::<4, _, _, _>(a),
-        5 => cull_fix_k::<5, _, _, _>(a),
-        6 => cull_fix_k::<6, _, _, _>(a),
-        7 => cull_fix_k::<7, _, _, _>(a),
-        8 => cull_fix_k::<8, _, _, _>(a),
-        k => Err(format!(
-            "{k} planes: the cull-plane RTL takes 1 to 8 (the model takes 0 to 8)"
-        )),
+    let base = ctx.cf.base;
+    if ctx.cf != CullFixFormat::over(base) {
+        return Err(format!(
+            "the rtl and verilator engines take the preset cull formats, not {}",
+            ctx.cf.name()
+        ));
     }
+    let a = (engine, ctx, tests, verilator_dir, vcd, sink);
+    rtl::with_plane_fix!(&base, ctx.k, S, { cull_fix_block::<S, _, _, _>(a) })?
 }
 
 /// The arguments of [`run_cull_fix`], passed on to the block of the right type.
 type CullFixArgs<'a, It, F> = (Engine, CullFixCtx, It, &'a Path, Option<&'a Path>, F);
-
-fn cull_fix_k<const P: usize, K, It, F>(a: CullFixArgs<'_, It, F>) -> Result<u64, String>
-where
-    K: Send + 'static,
-    It: Iterator<Item = Keyed<K, CullFixCtx>> + Send + 'static,
-    F: FnMut(K, &NodeFixRay, PlaneFixOut) -> Result<(), String>,
-{
-    let base = a.1.cf.base;
-    if a.1.cf != CullFixFormat::over(base) {
-        return Err(format!(
-            "the rtl and verilator engines take the preset cull formats, not {}",
-            a.1.cf.name()
-        ));
-    }
-    if base == FixFormat::b8() {
-        cull_fix_block::<rtl::PlaneFixB8<P>, _, _, _>(a)
-    } else if base == FixFormat::b12() {
-        cull_fix_block::<rtl::PlaneFixB12<P>, _, _, _>(a)
-    } else if base == FixFormat::b16() {
-        cull_fix_block::<rtl::PlaneFixB16<P>, _, _, _>(a)
-    } else {
-        Err(format!(
-            "no PlaneFix instance for {}: the rtl and verilator engines take b8, b12, b16",
-            base.name()
-        ))
-    }
-}
 
 fn cull_fix_block<S: PlaneFixIo, K, It, F>(
     (engine, ctx, tests, verilator_dir, vcd, sink): CullFixArgs<'_, It, F>,

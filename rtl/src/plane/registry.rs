@@ -117,3 +117,51 @@ macro_rules! with_plane_float {
         }
     }};
 }
+
+/// Runs `$body` with `$t` bound to the `PlaneFix` type (table option, default depth) over a preset slab
+/// format with `$k` planes (1 to 8), or returns an error for a configuration without an instantiated
+/// block. `$body` is compiled once per format and plane count.
+#[macro_export]
+macro_rules! with_plane_fix {
+    ($base:expr, $k:expr, $t:ident, $body:block) => {{
+        let k: usize = $k;
+        match k {
+            1 => $crate::__with_plane_fix_k!($base, 1, $t, $body),
+            2 => $crate::__with_plane_fix_k!($base, 2, $t, $body),
+            3 => $crate::__with_plane_fix_k!($base, 3, $t, $body),
+            4 => $crate::__with_plane_fix_k!($base, 4, $t, $body),
+            5 => $crate::__with_plane_fix_k!($base, 5, $t, $body),
+            6 => $crate::__with_plane_fix_k!($base, 6, $t, $body),
+            7 => $crate::__with_plane_fix_k!($base, 7, $t, $body),
+            8 => $crate::__with_plane_fix_k!($base, 8, $t, $body),
+            k => Err(format!(
+                "{k} planes: the cull-plane RTL takes 1 to 8 (the model takes 0 to 8)"
+            )),
+        }
+    }};
+}
+
+/// The format arms of `with_plane_fix!` for one plane count.
+#[doc(hidden)]
+#[macro_export]
+macro_rules! __with_plane_fix_k {
+    ($base:expr, $k:literal, $t:ident, $body:block) => {{
+        let f: &golden::format::fixed::FixFormat = $base;
+        if *f == golden::format::fixed::FixFormat::b8() {
+            type $t = $crate::PlaneFixB8<$k>;
+            Ok($body)
+        } else if *f == golden::format::fixed::FixFormat::b12() {
+            type $t = $crate::PlaneFixB12<$k>;
+            Ok($body)
+        } else if *f == golden::format::fixed::FixFormat::b16() {
+            type $t = $crate::PlaneFixB16<$k>;
+            Ok($body)
+        } else {
+            Err(format!(
+                "no PlaneFix instance for {}: the rtl and verilator engines take b8, b12, b16 \
+                 (add a type alias in rtl/src/plane/registry.rs for another)",
+                f.name()
+            ))
+        }
+    }};
+}
