@@ -346,7 +346,8 @@ pub fn run(a: &Args, out: &Path) -> Result<String, String> {
         crate::out_file::write_file(&path, verilog(f, *cuts)?)?;
         if a.synth && !area.contains_key(&m) {
             eprintln!("synthesising {m} ...");
-            let row = crate::synth::synth(&path, &m, latency(f, *cuts), &dir.join("synth"))?;
+            let row = crate::synth::synth_module(&path, &m, latency(f, *cuts), &dir.join("synth"))?
+                .area();
             let _ = writeln!(
                 new_rows,
                 "{m},{},,{},,,{},{},{}",

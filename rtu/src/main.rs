@@ -67,6 +67,9 @@ enum Cmd {
     /// rounded reference, every tester's latency, valid and tag by k-induction, each with a mutant that
     /// must fail (writes formal/formal.csv, formal/formal.md, formal/cex/*.vcd).
     Formal(formal_cmd::Args),
+    /// Synthesise exported modules with Yosys (generic, iCE40 with logic depth, Xilinx 7-series; all
+    /// flattened): area and depth per module (writes synth/report.csv and synth/report.md).
+    Synth(synth::Args),
     /// The failure cases of the textbook methods across the three testers, naive against ours (writes
     /// stability.csv and stability.md).
     Stability,
@@ -109,6 +112,7 @@ fn main() -> ExitCode {
         }),
         Cmd::Fit(a) => fit_cmd::run(&a, out).map(|t| print!("{t}")),
         Cmd::Formal(a) => formal_cmd::run(&a, out).map(|t| print!("{t}")),
+        Cmd::Synth(a) => synth::run(&a, out).map(|t| print!("{t}")),
         Cmd::Stability => stability_cmd::run(out).map(|t| print!("{t}")),
         Cmd::Sweep(a) => sweep_cmd::run(&a, out).map(|t| print!("{t}")),
         Cmd::Trace(a) => trace_cmd::run(&a, out).map(|t| print!("{t}")),
