@@ -93,7 +93,7 @@ pub fn slab_fix_ladder_default(fmt: &FixFormat) -> Result<(String, String, usize
         (
             names::slab_fix_module_cuts(fmt, <S as crate::slab::fix::SlabFixIo>::CUTS),
             slab_fix_verilog_of::<S>(fmt),
-            <S as crate::io::SlabIo>::LATENCY,
+            <S as crate::io::TesterIo>::LATENCY,
         )
     })
 }
@@ -107,7 +107,7 @@ pub fn slab_float_ladder_default(
         (
             names::slab_float_module_cuts(f, <S as crate::slab::float::SlabFloatIo>::CUTS),
             slab_float_verilog_of::<S>(),
-            <S as crate::io::SlabIo>::LATENCY,
+            <S as crate::io::TesterIo>::LATENCY,
         )
     })
 }
@@ -435,7 +435,7 @@ pub fn find(module: &str) -> Result<Exported, String> {
 /// b8, b12 and b16 at the default depth and the 11-clock depth and the fraction option over b12 and b16,
 /// each with 1 and 4 planes; the float tester with 1 plane.
 pub fn plane_verilog() -> Vec<(String, String, usize)> {
-    fn named<S: crate::SlabIo>(module: String, mut uut: S) -> (String, String, usize) {
+    fn named<S: crate::TesterIo>(module: String, mut uut: S) -> (String, String, usize) {
         let v = verilog_named(&mut uut, &module);
         (module, v, S::LATENCY)
     }

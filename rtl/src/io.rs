@@ -1,10 +1,11 @@
-//! `SlabIo`: the testbench-side interface shared by the slab testers of both datapaths, so one driver,
-//! one stream runner and one cross-simulation loop serve both.
+//! `TesterIo`: the testbench-side interface of every pipelined tester (one test a clock: the slab
+//! testers, the cull-plane testers and the bundle pairs, on both datapaths), so one driver, one stream
+//! runner and one cross-simulation loop serve them all.
 
 use rust_hdl::prelude::*;
 
-/// A pipelined slab tester seen from a testbench: typed inputs and outputs mirroring its golden model.
-pub trait SlabIo: Block {
+/// A pipelined tester seen from a testbench: typed inputs and outputs mirroring its golden model.
+pub trait TesterIo: Block {
     /// The quantised ray type (`FixRay`, `FloatRay`).
     type Ray: Clone + Copy + std::fmt::Debug + PartialEq + Send + 'static;
     /// The quantised box type.

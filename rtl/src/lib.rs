@@ -28,7 +28,7 @@ pub mod verilog;
 pub use bundle::registry::*;
 pub use fp::add::FpAdd;
 pub use fp::mul::FpMul;
-pub use io::SlabIo;
+pub use io::TesterIo;
 pub use plane::float::{PlaneFloat, PLANE_FLOAT_LATENCY};
 pub use plane::registry::*;
 pub use slab::fix::{SlabFix, SLAB_FIX_LATENCY, TAG_BITS};

@@ -23,7 +23,7 @@ use std::sync::Arc;
 use tb::ip::words;
 use tb::plane::fix::{fix_vector, CullFixCtx};
 use tb::plane::float::{float_vector, CullFloatCtx};
-use tb::slab::ports::SlabCtx;
+use tb::slab::ports::TesterCtx;
 use tb::verilator::{parse_ports, Port};
 
 /// Options of `rtu encode`.

@@ -11,7 +11,7 @@ use std::fmt::Write as _;
 use std::path::Path;
 use std::time::Instant;
 use tb::engine::{run_fix, run_float, Engine};
-use tb::slab::ports::SlabCtx;
+use tb::slab::ports::TesterCtx;
 
 /// One row of the summary.
 pub struct Row {
@@ -75,7 +75,7 @@ type Sink<'a, O> = &'a mut dyn FnMut(usize, O) -> Result<(), String>;
 /// One row: every ray-box test on the model, the first `rtl_n` also on the RTL (through `run_rtl`), all
 /// judged against the exact oracle.
 #[allow(clippy::too_many_arguments)]
-fn measure<C: SlabCtx>(
+fn measure<C: TesterCtx>(
     name: String,
     cell: String,
     ctx: C,

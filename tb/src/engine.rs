@@ -5,8 +5,8 @@
 use crate::dut::PipelinedDut;
 use crate::plane::fix::CullFixCtx;
 use crate::plane::float::CullFloatCtx;
-use crate::rtl_sim::SlabRtl;
-use crate::slab::ports::{in_word, SlabCtx};
+use crate::rtl_sim::TesterSim;
+use crate::slab::ports::{in_word, TesterCtx};
 use golden::format::fixed::FixFormat;
 use golden::format::float::FloatFormat;
 use golden::plane::fix::{CullFixFormat, NodeFixRay, PlaneFixOut};
@@ -14,7 +14,7 @@ use golden::plane::float::{CullFloatFormat, NodeFloatRay};
 use golden::slab::float::SlabFloatOut;
 use rtl::plane::fix::PlaneFixIo;
 use rtl::plane::float::PlaneFloatIo;
-use rtl::SlabIo;
+use rtl::TesterIo;
 use std::collections::VecDeque;
 use std::path::Path;
 use std::sync::mpsc::sync_channel;
@@ -43,7 +43,7 @@ impl std::str::FromStr for Engine {
 }
 
 /// A test with the caller's own key `K` (returned with the result).
-pub type Keyed<K, C> = (K, <C as SlabCtx>::Ray, <C as SlabCtx>::Box);
+pub type Keyed<K, C> = (K, <C as TesterCtx>::Ray, <C as TesterCtx>::Box);
 
 /// Runs `tests` on the fixed tester of `fmt` (any format for the model; the presets for rtl and verilator).
 pub fn run_fix<K, It, F>(
@@ -230,7 +230,7 @@ where
     })
 }
 
-fn run_model<C: SlabCtx, K, It, F>(
+fn run_model<C: TesterCtx, K, It, F>(
     ctx: C,
     tests: It,
     vcd: Option<&Path>,
@@ -266,8 +266,8 @@ pub fn run_block<C, S, K, It, F>(
     mut sink: F,
 ) -> Result<u64, String>
 where
-    C: SlabCtx,
-    S: SlabIo<Ray = C::Ray, Box = C::Box, Out = C::Out>,
+    C: TesterCtx,
+    S: TesterIo<Ray = C::Ray, Box = C::Box, Out = C::Out>,
     K: Send + 'static,
     It: Iterator<Item = Keyed<K, C>> + Send + 'static,
     F: FnMut(K, &C::Ray, C::Out) -> Result<(), String>,
@@ -277,7 +277,7 @@ where
     match engine {
         Engine::Model => run_model(ctx, tests, vcd, sink),
         Engine::Rtl => {
-            let mut dut = SlabRtl::wrap(make());
+            let mut dut = TesterSim::wrap(make());
             if let Some(p) = vcd {
                 dut = dut.vcd_to(p).map_err(|e| format!("{}: {e}", p.display()))?;
             }

@@ -4,7 +4,7 @@
 //!
 //! | module | what it does |
 //! | --- | --- |
-//! | [`slab::ports`] | the slab testers' port encoding and the cross-simulation loop, both datapaths ([`slab::ports::SlabCtx`]) |
+//! | [`slab::ports`] | the slab testers' port encoding and the cross-simulation loop, both datapaths ([`slab::ports::TesterCtx`]) |
 //! | [`slab::strategies`] | proptest strategies over quantised slab vectors |
 //! | [`plane::fix`] | the fixed cull-plane tester's port encoding, vector streams and the cull-plane campaigns |
 //! | [`plane::float`] | the float cull-plane tester's port encoding and vector streams |

@@ -7,12 +7,12 @@
 //! otherwise no result of it ever leaves. A result that leaves equals the bit-accurate model's, with the
 //! test's tag. Data registers are not reset, so the data outputs are compared only while `valid_out`.
 
-use crate::rtl_sim::SlabRtl;
-use crate::slab::ports::{in_word, SlabCtx};
+use crate::rtl_sim::TesterSim;
+use crate::slab::ports::{in_word, TesterCtx};
 use crate::verilator::Harness;
 use rand::{Rng, SeedableRng};
 use rand_pcg::Pcg64;
-use rtl::SlabIo;
+use rtl::TesterIo;
 use std::collections::VecDeque;
 use std::path::Path;
 
@@ -99,12 +99,12 @@ pub fn reset_check<S, M>(
     )>,
 ) -> Result<ResetStats, String>
 where
-    S: SlabIo,
+    S: TesterIo,
     M: Fn(&S::Ray, &S::Box) -> S::Out,
 {
     use crate::dut::PipelinedDut;
     let lat = S::LATENCY;
-    let mut sim = SlabRtl::wrap(make())
+    let mut sim = TesterSim::wrap(make())
         .vcd_to(vcd)
         .map_err(|e| format!("{}: {e}", vcd.display()))?;
     let outputs: Vec<String> = match verilator {
@@ -226,7 +226,7 @@ where
     Ok(stats)
 }
 
-/// The reset check of a block that has a [`SlabCtx`] (the slab and cull-plane testers): the stream
+/// The reset check of a block that has a [`TesterCtx`] (the slab and cull-plane testers): the stream
 /// [`reset_stream`] of `tests`, the block made by `make` against `ctx`'s model, and its exported
 /// `verilog` (module `module`) built into a Verilator harness against the rust-hdl simulation; the VCD
 /// goes to `out/vcd/reset_<module>.vcd`.
@@ -239,8 +239,8 @@ pub fn check_block<C, S>(
     seed: u64,
 ) -> Result<ResetStats, String>
 where
-    C: SlabCtx,
-    S: SlabIo<Ray = C::Ray, Box = C::Box, Out = C::Out>,
+    C: TesterCtx,
+    S: TesterIo<Ray = C::Ray, Box = C::Box, Out = C::Out>,
 {
     let h = crate::verilator::build(verilog, module, &crate::out_dir().join("verilator"))?;
     let clocks = reset_stream(tests, S::LATENCY, seed);

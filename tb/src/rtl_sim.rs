@@ -5,7 +5,7 @@ use crate::dut::PipelinedDut;
 use golden::format::fixed::FixFormat;
 use rtl::slab::fix::SlabFixIo;
 use rtl::slab::float::SlabFloatIo;
-use rtl::SlabIo;
+use rtl::TesterIo;
 use rust_hdl::core::vcd_probe::{write_vcd_change, write_vcd_dump, write_vcd_header, VCDProbe};
 use rust_hdl::prelude::*;
 use std::path::Path;
@@ -13,8 +13,8 @@ use std::path::Path;
 /// Half a clock period in VCD time units (ps): the clock period is 10 ps.
 pub const HALF_PERIOD: u64 = 5;
 
-/// A slab tester (either datapath) in simulation.
-pub struct SlabRtl<S: SlabIo> {
+/// A pipelined tester ([`TesterIo`]: slab, cull-plane or bundle pair, either datapath) in simulation.
+pub struct TesterSim<S: TesterIo> {
     /// The block (read its outputs for cross-simulation).
     pub uut: S,
     vcd: Option<VCDProbe<crate::vcd_plain::VcdFile>>,
@@ -22,11 +22,11 @@ pub struct SlabRtl<S: SlabIo> {
 }
 
 /// The fixed slab tester's driver.
-pub type SlabFixRtl<S> = SlabRtl<S>;
+pub type SlabFixRtl<S> = TesterSim<S>;
 /// The float slab tester's driver.
-pub type SlabFloatRtl<S> = SlabRtl<S>;
+pub type SlabFloatRtl<S> = TesterSim<S>;
 
-impl<S: SlabFixIo> SlabRtl<S> {
+impl<S: SlabFixIo> TesterSim<S> {
     /// A fixed slab tester for `fmt`.
     pub fn new(fmt: &FixFormat) -> Self {
         Self::wrap(S::for_format(fmt))
@@ -38,7 +38,7 @@ impl<S: SlabFixIo> SlabRtl<S> {
     }
 }
 
-impl<S: SlabFloatIo> SlabRtl<S> {
+impl<S: SlabFloatIo> TesterSim<S> {
     /// A float slab tester.
     pub fn float() -> Self {
         Self::wrap(S::make())
@@ -50,11 +50,11 @@ impl<S: SlabFloatIo> SlabRtl<S> {
     }
 }
 
-impl<S: SlabIo> SlabRtl<S> {
+impl<S: TesterIo> TesterSim<S> {
     /// Wraps a block (connected here).
     pub fn wrap(mut uut: S) -> Self {
         uut.connect_all();
-        SlabRtl {
+        TesterSim {
             uut,
             vcd: None,
             cycle: 0,
@@ -81,7 +81,7 @@ impl<S: SlabIo> SlabRtl<S> {
     }
 }
 
-impl<S: SlabIo> PipelinedDut for SlabRtl<S> {
+impl<S: TesterIo> PipelinedDut for TesterSim<S> {
     type In = (S::Ray, S::Box);
     type Out = S::Out;
 

@@ -18,11 +18,11 @@ use rtl::export::{slab_fix_verilog_ladder, slab_float_verilog_ladder};
 use rtl::names::{slab_fix_module, slab_float_module};
 use rtl::slab::fix::SlabFixIo;
 use rtl::slab::float::SlabFloatIo;
-use rtl::SlabIo;
+use rtl::TesterIo;
 use std::cell::RefCell;
 use tb::campaign::{conservative_campaign, float_campaign, float_vectors, slab_vectors};
 use tb::dut::run_checked;
-use tb::rtl_sim::SlabRtl;
+use tb::rtl_sim::TesterSim;
 use tb::slab::ports::xsim;
 use tb::slab::strategies::{float_burst, slab_burst};
 
@@ -105,7 +105,7 @@ fn every_float_ladder_format_dispatches() {
 // rust-hdl simulation against the bit-accurate model.
 
 fn fix_matches_model<S: SlabFixIo>(fmt: FixFormat, seed: u64) {
-    let dut = RefCell::new(SlabRtl::<S>::new(&fmt));
+    let dut = RefCell::new(TesterSim::<S>::new(&fmt));
     let vectors: Vec<_> = slab_vectors(fmt, GenKind::Mixed, seed, SIM_VECTORS, true).collect();
     let n = run_checked(&mut *dut.borrow_mut(), vectors, |v| {
         slab_fix(&fmt, &v.0, &v.1)
@@ -130,7 +130,7 @@ fn fix_matches_model<S: SlabFixIo>(fmt: FixFormat, seed: u64) {
 
 fn float_matches_model<S: SlabFloatIo>(seed: u64) {
     let f = S::format();
-    let dut = RefCell::new(SlabRtl::<S>::float());
+    let dut = RefCell::new(TesterSim::<S>::float());
     let vectors: Vec<_> = float_vectors(f, GenKind::Mixed, seed, SIM_VECTORS, true).collect();
     let n = run_checked(&mut *dut.borrow_mut(), vectors, |v| {
         slab_float(&f, &v.0, &v.1)
@@ -183,7 +183,7 @@ fn rtl_matches_model_e6m8() {
 #[test]
 fn a_block_of_another_ladder_format_is_caught() {
     let (g12, g13) = (grid(12), grid(13));
-    let mut dut = SlabRtl::<rtl::SlabFixG13>::new(&g13);
+    let mut dut = TesterSim::<rtl::SlabFixG13>::new(&g13);
     let vectors: Vec<_> = slab_vectors(g12, GenKind::Mixed, 7, 2_000, true).collect();
     assert!(run_checked(&mut dut, vectors, |v| slab_fix(&g12, &v.0, &v.1)).is_err());
 }

@@ -46,7 +46,7 @@
 use crate::bundle::edge_fix::{
     bundle_test_latency, BundleTest, BUNDLE_TEST_CUTS, BUNDLE_TEST_CUTS_DEEP,
 };
-use crate::io::SlabIo;
+use crate::io::TesterIo;
 use crate::slab::fix::{code, TAG_BITS};
 use golden::bundle::edge::BoxPair;
 use golden::bundle::fix::{all_hit_fix, all_miss_fix, BundleFixFormat, FixBundle};
@@ -232,7 +232,9 @@ impl PairInput {
 }
 
 /// A bundle pair of any width, built for a format, so drivers need not spell the widths.
-pub trait BundleFixIo: SlabIo<Ray = PairInput, Box = BoxPair<FixBox>, Out = (bool, bool)> {
+pub trait BundleFixIo:
+    TesterIo<Ray = PairInput, Box = BoxPair<FixBox>, Out = (bool, bool)>
+{
     /// The block's cut points (those of [`crate::bundle::edge_fix::cut`]).
     const CUTS: usize;
     /// The pair for `bf` (whose widths must match the block's).
@@ -248,7 +250,7 @@ impl<const G: usize, const V: usize, const D: usize, const T: usize, const CUTS:
     }
 }
 
-impl<const G: usize, const V: usize, const D: usize, const T: usize, const CUTS: usize> SlabIo
+impl<const G: usize, const V: usize, const D: usize, const T: usize, const CUTS: usize> TesterIo
     for BundleFix<G, V, D, T, CUTS>
 {
     type Ray = PairInput;

@@ -46,7 +46,7 @@
 //! equal), so that no child output is left unused.
 
 use crate::bundle::edge_float::{bundle_float_test_latency, BundleFloatTest};
-use crate::io::SlabIo;
+use crate::io::TesterIo;
 use crate::TAG_BITS;
 use golden::bundle::edge::BoxPair;
 use golden::bundle::float::{all_hit_float, all_miss_float, FloatBundle};
@@ -240,7 +240,7 @@ impl FloatPairInput {
 
 /// A float bundle pair of any format, so drivers need not spell the widths.
 pub trait BundleFloatIo:
-    SlabIo<Ray = FloatPairInput, Box = BoxPair<FloatBox>, Out = (bool, bool)>
+    TesterIo<Ray = FloatPairInput, Box = BoxPair<FloatBox>, Out = (bool, bool)>
 {
     /// The block's cut points ([`crate::fp::cuts`]).
     const CUTS: usize;
@@ -269,7 +269,7 @@ impl<const E: usize, const M: usize, const N: usize, const CUTS: usize> BundleFl
     }
 }
 
-impl<const E: usize, const M: usize, const N: usize, const CUTS: usize> SlabIo
+impl<const E: usize, const M: usize, const N: usize, const CUTS: usize> TesterIo
     for BundleFloat<E, M, N, CUTS>
 {
     type Ray = FloatPairInput;

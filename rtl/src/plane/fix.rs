@@ -34,7 +34,7 @@
 //! 6. `_q6`: `hit = slab hit && no parallel cull && t_entry <= t_exit`; these registers drive the outputs.
 
 use crate::cut::Cut;
-use crate::io::SlabIo;
+use crate::io::TesterIo;
 use crate::plane::bound::PlaneBound;
 use crate::plane::sums::PlaneSums;
 use crate::slab::fix::{
@@ -283,7 +283,7 @@ impl<
 }
 
 /// A chained fixed tester of any width and plane count, built for a plane format.
-pub trait PlaneFixIo: SlabIo<Ray = NodeFixRay, Box = FixNode, Out = PlaneFixOut> {
+pub trait PlaneFixIo: TesterIo<Ray = NodeFixRay, Box = FixNode, Out = PlaneFixOut> {
     /// Planes per node.
     const PLANES: usize;
     /// The slab tester's cut points (`SCUTS`).
@@ -330,7 +330,7 @@ impl<
         const K: usize,
         const SCUTS: usize,
         const PCUTS: usize,
-    > SlabIo for PlaneFix<G, D, I, T, N, DB, WB, SB, EB, K, SCUTS, PCUTS>
+    > TesterIo for PlaneFix<G, D, I, T, N, DB, WB, SB, EB, K, SCUTS, PCUTS>
 {
     type Ray = NodeFixRay;
     type Box = FixNode;

@@ -39,7 +39,7 @@ use crate::delay::Delay3;
 use crate::fp::add::{FpAdd, FP_ADD_LATENCY};
 use crate::fp::cmp::FpCmp;
 use crate::fp::mul::{FpMul, FP_MUL_LATENCY};
-use crate::io::SlabIo;
+use crate::io::TesterIo;
 use crate::plane::recip::{FpRecip, FP_RECIP_LATENCY};
 use crate::slab::float::{SlabFloat, SLAB_FLOAT_LATENCY};
 use crate::TAG_BITS;
@@ -673,7 +673,7 @@ impl<const E: usize, const M: usize, const N: usize, const K: usize> Default
 }
 
 /// A chained float node tester of any format and plane count.
-pub trait PlaneFloatIo: SlabIo<Ray = NodeFloatRay, Box = FloatNode, Out = SlabFloatOut> {
+pub trait PlaneFloatIo: TesterIo<Ray = NodeFloatRay, Box = FloatNode, Out = SlabFloatOut> {
     /// The float format of the block.
     fn format() -> FloatFormat;
     /// Planes per node.
@@ -701,7 +701,7 @@ impl<const E: usize, const M: usize, const N: usize, const K: usize> PlaneFloatI
     }
 }
 
-impl<const E: usize, const M: usize, const N: usize, const K: usize> SlabIo
+impl<const E: usize, const M: usize, const N: usize, const K: usize> TesterIo
     for PlaneFloat<E, M, N, K>
 {
     type Ray = NodeFloatRay;

@@ -38,7 +38,7 @@
 //!    two `CodeFracCmp`s and a t-code comparison), so the merge's result is not waited for.
 
 use crate::delay::Delay3;
-use crate::io::SlabIo;
+use crate::io::TesterIo;
 use crate::plane::quot_bound::PlaneFracBound;
 use crate::plane::quot_cmp::FracCmp;
 use crate::plane::quot_code_cmp::CodeFracCmp;
@@ -262,7 +262,7 @@ impl<
 }
 
 /// The fraction option of any width and plane count, built for a plane format.
-pub trait PlaneFracIo: SlabIo<Ray = NodeFixRay, Box = FixNode, Out = PlaneFracOut> {
+pub trait PlaneFracIo: TesterIo<Ray = NodeFixRay, Box = FixNode, Out = PlaneFracOut> {
     /// Planes per node.
     const PLANES: usize;
     /// A tester for `cf` (whose widths must match the block's).
@@ -303,7 +303,7 @@ impl<
         const MB: usize,
         const FB: usize,
         const K: usize,
-    > SlabIo for PlaneFrac<G, D, I, T, N, DB, WB, SB, EB, MB, FB, K>
+    > TesterIo for PlaneFrac<G, D, I, T, N, DB, WB, SB, EB, MB, FB, K>
 {
     type Ray = NodeFixRay;
     type Box = FixNode;

@@ -50,7 +50,7 @@
 //! through big integers in simulation and emits unsized `$signed` casts in Verilog.
 
 use crate::cut::Cut;
-use crate::io::SlabIo;
+use crate::io::TesterIo;
 use crate::slab::axis_dist::AxisDist;
 use crate::slab::mul_round::MulRound;
 use golden::format::fixed::{FixBox, FixFormat, FixRay};
@@ -292,7 +292,7 @@ impl<const G: usize, const D: usize, const I: usize, const T: usize, const CUTS:
 }
 
 /// A fixed slab tester of any width, built for a format, so drivers need not spell the widths.
-pub trait SlabFixIo: SlabIo<Ray = FixRay, Box = FixBox, Out = SlabFixOut> {
+pub trait SlabFixIo: TesterIo<Ray = FixRay, Box = FixBox, Out = SlabFixOut> {
     /// The block's cut points ([`cut`]).
     const CUTS: usize;
     /// A tester for `fmt` (whose widths must match the block's).
@@ -308,7 +308,7 @@ impl<const G: usize, const D: usize, const I: usize, const T: usize, const CUTS:
     }
 }
 
-impl<const G: usize, const D: usize, const I: usize, const T: usize, const CUTS: usize> SlabIo
+impl<const G: usize, const D: usize, const I: usize, const T: usize, const CUTS: usize> TesterIo
     for SlabFix<G, D, I, T, CUTS>
 {
     type Ray = FixRay;

@@ -28,7 +28,7 @@ use crate::cut::Wait;
 use crate::fp::add::{fp_add_latency, FpAdd};
 use crate::fp::cmp::FpCmp;
 use crate::fp::mul::{fp_mul_latency, FpMul};
-use crate::io::SlabIo;
+use crate::io::TesterIo;
 use crate::TAG_BITS;
 use golden::format::float::{FloatFormat, Rounding};
 use golden::slab::float::{FloatBox, FloatRay, SlabFloatOut};
@@ -222,7 +222,7 @@ impl<const E: usize, const M: usize, const N: usize, const CUTS: usize> Default
 }
 
 /// A float slab tester of any format.
-pub trait SlabFloatIo: SlabIo<Ray = FloatRay, Box = FloatBox, Out = SlabFloatOut> {
+pub trait SlabFloatIo: TesterIo<Ray = FloatRay, Box = FloatBox, Out = SlabFloatOut> {
     /// The block's optional cut points ([`cut`]).
     const CUTS: usize;
     /// The format of the block.
@@ -245,7 +245,7 @@ impl<const E: usize, const M: usize, const N: usize, const CUTS: usize> SlabFloa
     }
 }
 
-impl<const E: usize, const M: usize, const N: usize, const CUTS: usize> SlabIo
+impl<const E: usize, const M: usize, const N: usize, const CUTS: usize> TesterIo
     for SlabFloat<E, M, N, CUTS>
 {
     type Ray = FloatRay;

@@ -9,7 +9,7 @@
 
 use crate::campaign::{campaign_bounds, campaign_map, raw_fix_vector};
 use crate::dut::PipelinedDut;
-use crate::rtl_sim::SlabRtl;
+use crate::rtl_sim::TesterSim;
 use crate::slab::ports::{replay_vcd, XsimStats, XSIM_VCD_WINDOW};
 use crate::verilator::Harness;
 use golden::bundle::edge::{BoxPair, Bundle};
@@ -275,7 +275,7 @@ where
     let iv = harness
         .output_index("valid_out")
         .ok_or("no valid_out port")?;
-    let mut rtl = (lockstep_cycles > 0).then(|| SlabRtl::wrap(make()));
+    let mut rtl = (lockstep_cycles > 0).then(|| TesterSim::wrap(make()));
     let mut pending: VecDeque<(u64, u16, BundleVec)> = VecDeque::new();
     let mut recent: VecDeque<(u16, Option<BundleVec>)> = VecDeque::new();
     let mut stats = XsimStats::default();
@@ -342,6 +342,6 @@ where
 }
 
 /// The stream runner's view of a bundle pair in simulation (for [`crate::dut::run_checked`]).
-pub fn bundle_rtl<S: BundleFixIo>(bf: &BundleFixFormat) -> SlabRtl<S> {
-    SlabRtl::wrap(S::for_format(bf))
+pub fn bundle_rtl<S: BundleFixIo>(bf: &BundleFixFormat) -> TesterSim<S> {
+    TesterSim::wrap(S::for_format(bf))
 }

@@ -8,7 +8,7 @@ pub mod family_docs;
 pub mod package;
 pub mod words;
 
-use crate::slab::ports::{in_word, SlabCtx};
+use crate::slab::ports::{in_word, TesterCtx};
 use crate::verilator::Port;
 
 /// The hardware tag of the `seq`-th test of a stream (counting from 0): its low 16 bits. The pipelined
@@ -19,7 +19,7 @@ pub fn seq_tag(seq: usize) -> u16 {
 
 /// The input words of one test of a slab-shaped tester (slab or chained cull-plane, either datapath),
 /// one per column of `cols` ([`words::columns`] of the inputs), with tag `tag`.
-pub fn slab_in_row<C: SlabCtx>(
+pub fn slab_in_row<C: TesterCtx>(
     ctx: &C,
     cols: &[Port],
     tag: u16,
@@ -34,7 +34,7 @@ pub fn slab_in_row<C: SlabCtx>(
 
 /// The output words of a result `o` with tag `tag`, one per column of `cols` ([`words::columns`] of the
 /// outputs: `tag_out`, `hit`, `t_entry`, `t_exit`).
-pub fn slab_out_row<C: SlabCtx>(
+pub fn slab_out_row<C: TesterCtx>(
     ctx: &C,
     cols: &[Port],
     tag: u16,
@@ -53,7 +53,7 @@ pub fn slab_out_row<C: SlabCtx>(
 }
 
 /// The tag and result of a row of output words (columns `cols`, as [`slab_out_row`] writes them).
-pub fn slab_out_of_row<C: SlabCtx>(
+pub fn slab_out_of_row<C: TesterCtx>(
     ctx: &C,
     cols: &[Port],
     row: &[u64],

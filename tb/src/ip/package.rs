@@ -671,7 +671,8 @@ mod tests {
         let path = dir.join("slab.vcd");
         {
             use crate::dut::PipelinedDut;
-            let mut sim = crate::rtl_sim::SlabRtl::<rtl::SlabFixB8>::with_vcd(&fmt, &path).unwrap();
+            let mut sim =
+                crate::rtl_sim::TesterSim::<rtl::SlabFixB8>::with_vcd(&fmt, &path).unwrap();
             for _ in 0..3 {
                 sim.step(None);
             }

@@ -1,8 +1,8 @@
-//! Testbench glue of the fixed-point chained slab + cull-plane tester: the [`SlabCtx`] that lets the
+//! Testbench glue of the fixed-point chained slab + cull-plane tester: the [`TesterCtx`] that lets the
 //! generic cross-simulation loop drive it, vector streams, and the conservativeness campaign against the
 //! exact clip and an exact ray-triangle test.
 
-use crate::slab::ports::SlabCtx;
+use crate::slab::ports::TesterCtx;
 use glam::DVec3;
 use golden::error::Error;
 use golden::exact::ExactHit;
@@ -29,7 +29,7 @@ pub struct CullFixCtx {
     pub k: usize,
 }
 
-impl SlabCtx for CullFixCtx {
+impl TesterCtx for CullFixCtx {
     type Ray = NodeFixRay;
     type Box = FixNode;
     type Out = PlaneFixOut;

@@ -1,10 +1,10 @@
-//! Testbench glue of the chained float node tester (`rtl::PlaneFloat`): its [`SlabCtx`]
+//! Testbench glue of the chained float node tester (`rtl::PlaneFloat`): its [`TesterCtx`]
 //! ([`CullFloatCtx`]: port encoding, the model `golden::plane::float::node_float`, the judge), and vector
 //! streams — raw bit patterns (NaN and infinities included) and the cull-plane campaign's cases
 //! ([`CullGen`], quantised with planes fitted by [`float_case`]).
 
 use crate::plane::fix::{float_case, CULL_R};
-use crate::slab::ports::SlabCtx;
+use crate::slab::ports::TesterCtx;
 use golden::exact::ExactHit;
 use golden::plane::float::{
     node_float, out_interval, CullFloatFormat, FloatNode, FloatPlane, NodeFloatRay,
@@ -30,7 +30,7 @@ impl CullFloatCtx {
     }
 }
 
-impl SlabCtx for CullFloatCtx {
+impl TesterCtx for CullFloatCtx {
     type Ray = NodeFloatRay;
     type Box = FloatNode;
     type Out = SlabFloatOut;

@@ -2,14 +2,14 @@
 //! and the cross-simulation loop that checks Verilator against the rust-hdl simulation and the model.
 
 use crate::dut::PipelinedDut;
-use crate::rtl_sim::SlabRtl;
+use crate::rtl_sim::TesterSim;
 use crate::verilator::Harness;
 use golden::format::fixed::{FixBox, FixFormat, FixRay};
 use golden::format::float::FloatFormat;
 use golden::slab::fix::{slab_fix, SlabFixOut};
 use golden::slab::float::{slab_float, FloatBox, FloatRay, SlabFloatOut};
 use rtl::slab::fix::code;
-use rtl::SlabIo;
+use rtl::TesterIo;
 use std::collections::VecDeque;
 use std::fmt::Debug;
 use std::sync::mpsc::sync_channel;
@@ -17,9 +17,11 @@ use std::sync::mpsc::sync_channel;
 /// One fixed slab test for the pipeline: `None` is a bubble.
 pub type SlabVec = Option<(FixRay, FixBox)>;
 
-/// What a testbench must know of a datapath's format: how a test becomes port values, the bit-accurate
-/// model, and the fields of a result as port values. Implemented by `FixFormat` and `FloatFormat`.
-pub trait SlabCtx: Copy + Send + Sync + Debug + 'static {
+/// What a testbench must know of a tester's configuration: how a test becomes port values, the
+/// bit-accurate model, and the fields of a result as port values. Implemented by `FixFormat` and
+/// `FloatFormat` (the slab testers), `tb::plane::fix::CullFixCtx` and `tb::plane::float::CullFloatCtx`
+/// (the cull-plane testers), and the quotient option's context in its tests.
+pub trait TesterCtx: Copy + Send + Sync + Debug + 'static {
     type Ray: Clone + Copy + Debug + PartialEq + Send + 'static;
     type Box: Clone + Copy + Debug + PartialEq + Send + 'static;
     type Out: Clone + Copy + Debug + PartialEq;
@@ -44,7 +46,7 @@ pub trait SlabCtx: Copy + Send + Sync + Debug + 'static {
     ) -> golden::slab::check::Verdict;
 }
 
-impl SlabCtx for FixFormat {
+impl TesterCtx for FixFormat {
     type Ray = FixRay;
     type Box = FixBox;
     type Out = SlabFixOut;
@@ -98,7 +100,7 @@ impl SlabCtx for FixFormat {
     }
 }
 
-impl SlabCtx for FloatFormat {
+impl TesterCtx for FloatFormat {
     type Ray = FloatRay;
     type Box = FloatBox;
     type Out = SlabFloatOut;
@@ -146,7 +148,7 @@ impl SlabCtx for FloatFormat {
 }
 
 /// The value of input port `port` (a Verilog name such as `ray_o_lo_1`) for one cycle.
-pub fn in_word<C: SlabCtx>(
+pub fn in_word<C: TesterCtx>(
     ctx: &C,
     port: &str,
     tag: u16,
@@ -171,12 +173,12 @@ pub fn in_word<C: SlabCtx>(
 pub const XSIM_VCD_WINDOW: usize = 32;
 
 /// Drives `cycles` (tag and vector, or bubble) through a block made by `make`, writing a VCD at `path`.
-pub fn replay_vcd<S: SlabIo>(
+pub fn replay_vcd<S: TesterIo>(
     make: impl Fn() -> S,
     cycles: &VecDeque<(u16, Option<(S::Ray, S::Box)>)>,
     path: &std::path::Path,
 ) -> std::io::Result<()> {
-    let mut sim = SlabRtl::wrap(make()).vcd_to(path)?;
+    let mut sim = TesterSim::wrap(make()).vcd_to(path)?;
     for (tag, v) in cycles {
         sim.step(v.as_ref().map(|x| (*tag, x)));
     }
@@ -208,8 +210,8 @@ pub fn xsim<C, S, It>(
     mut progress: impl FnMut(u64),
 ) -> Result<XsimStats, String>
 where
-    C: SlabCtx,
-    S: SlabIo<Ray = C::Ray, Box = C::Box, Out = C::Out>,
+    C: TesterCtx,
+    S: TesterIo<Ray = C::Ray, Box = C::Box, Out = C::Out>,
     It: Iterator<Item = Option<(C::Ray, C::Box)>> + Send + 'static,
 {
     let ports: Vec<String> = harness.inputs.iter().map(|p| p.name.clone()).collect();
@@ -239,7 +241,7 @@ where
     let ien = harness.output_index("t_entry").ok_or("no t_entry port")?;
     let iex = harness.output_index("t_exit").ok_or("no t_exit port")?;
     let mut rtl = if lockstep_cycles > 0 {
-        Some(SlabRtl::wrap(make()))
+        Some(TesterSim::wrap(make()))
     } else {
         None
     };

@@ -267,7 +267,7 @@ fn valid_leaves_latency_clocks_after_it_enters_b16() {
 
 #[test]
 fn valid_leaves_latency_clocks_after_it_enters_5_clocks() {
-    assert_eq!(<rtl::BundleFixB12P5 as rtl::io::SlabIo>::LATENCY, 5);
+    assert_eq!(<rtl::BundleFixB12P5 as rtl::io::TesterIo>::LATENCY, 5);
     valid_leaves_latency_clocks_after_it_enters::<rtl::BundleFixB12P5>(preset(1));
 }
 

@@ -206,13 +206,13 @@ fn valid_leaves_latency_clocks_after_it_enters<S: BundleFloatIo + 'static>() {
 
 #[test]
 fn valid_leaves_latency_clocks_after_it_enters_fp16() {
-    assert_eq!(<rtl::BundleFloatFp16 as rtl::SlabIo>::LATENCY, 9);
+    assert_eq!(<rtl::BundleFloatFp16 as rtl::TesterIo>::LATENCY, 9);
     valid_leaves_latency_clocks_after_it_enters::<rtl::BundleFloatFp16>();
 }
 
 #[test]
 fn valid_leaves_latency_clocks_after_it_enters_13_clocks() {
-    assert_eq!(<rtl::BundleFloatFp16P13 as rtl::SlabIo>::LATENCY, 13);
+    assert_eq!(<rtl::BundleFloatFp16P13 as rtl::TesterIo>::LATENCY, 13);
     valid_leaves_latency_clocks_after_it_enters::<rtl::BundleFloatFp16P13>();
 }
 
@@ -303,7 +303,7 @@ fn reset_clears_every_valid_bit<S: BundleFloatIo + 'static>() {
         .unwrap_or_else(|e| panic!("{e}"));
     let s = with_big_stack(move || {
         let tests: Vec<_> = bundle_float_vectors(f, 42, 300, false).flatten().collect();
-        let clocks = tb::reset::reset_stream(&tests, <S as rtl::SlabIo>::LATENCY, 42);
+        let clocks = tb::reset::reset_stream(&tests, <S as rtl::TesterIo>::LATENCY, 42);
         let vcd = tb::out_dir().join("vcd").join(format!("reset_{name}.vcd"));
         let word =
             |p: &str, t: u16, x: &Option<_>| tb::bundle::pair_float::bundle_float_in_word(p, t, x);

@@ -8,8 +8,8 @@ use golden::plane::fix::{CullFixFormat, MAX_PLANES};
 use rtl::plane::fix::PlaneFixIo;
 use tb::dut::run_checked;
 use tb::plane::fix::{cull_fix_campaign, node_fix_vectors, CullFixCtx};
-use tb::rtl_sim::SlabRtl;
-use tb::slab::ports::{xsim, SlabCtx};
+use tb::rtl_sim::TesterSim;
+use tb::slab::ports::{xsim, TesterCtx};
 use tb::vcd_read::read_trace;
 
 fn ctx(fmt: FixFormat, k: usize) -> CullFixCtx {
@@ -21,7 +21,7 @@ fn ctx(fmt: FixFormat, k: usize) -> CullFixCtx {
 
 fn rtl_matches_model<S: PlaneFixIo>(fmt: FixFormat, n: u64, seed: u64) {
     let c = ctx(fmt, S::PLANES);
-    let mut dut = SlabRtl::wrap(S::for_format(&c.cf));
+    let mut dut = TesterSim::wrap(S::for_format(&c.cf));
     let stream = node_fix_vectors(c, seed, n, true);
     let done = run_checked(&mut dut, stream, |v| c.model(&v.0, &v.1))
         .unwrap_or_else(|e| panic!("{}: {e}", c.name()));
@@ -52,7 +52,7 @@ fn rtl_matches_model_b16_k2() {
 /// registers) computes the same results as the model, five clocks later.
 #[test]
 fn rtl_matches_model_b12_k4_p11() {
-    assert_eq!(<rtl::PlaneFixB12P11<4> as rtl::SlabIo>::LATENCY, 11);
+    assert_eq!(<rtl::PlaneFixB12P11<4> as rtl::TesterIo>::LATENCY, 11);
     rtl_matches_model::<rtl::PlaneFixB12P11<4>>(FixFormat::b12(), 20_000, 12);
 }
 
@@ -117,7 +117,7 @@ fn a_slab_longer_than_the_plane_path_is_refused() {
 #[test]
 fn a_wrong_model_is_caught() {
     let c = ctx(FixFormat::b12(), 2);
-    let mut dut = SlabRtl::wrap(rtl::PlaneFixB12::<2>::new(&c.cf));
+    let mut dut = TesterSim::wrap(rtl::PlaneFixB12::<2>::new(&c.cf));
     let stream = node_fix_vectors(c, 5, 5_000, false);
     let wrong = CullFixCtx { k: 0, ..c };
     assert!(run_checked(&mut dut, stream, |v| wrong.model(&v.0, &v.1)).is_err());
@@ -135,7 +135,7 @@ fn valid_leaves_latency_clocks_after_it_enters<S: PlaneFixIo>(want: usize) {
     stream.extend(std::iter::repeat_n(None, 12));
     stream.extend(tests[1..].iter().cloned());
     {
-        let mut dut = SlabRtl::wrap(S::for_format(&c.cf)).vcd_to(&path).unwrap();
+        let mut dut = TesterSim::wrap(S::for_format(&c.cf)).vcd_to(&path).unwrap();
         let n = run_checked(&mut dut, stream, |v| c.model(&v.0, &v.1))
             .unwrap_or_else(|e| panic!("{e}"));
         assert_eq!(n, 4);

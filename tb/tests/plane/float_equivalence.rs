@@ -13,7 +13,7 @@ use rtl::plane::recip::FpRecip;
 use rust_hdl::prelude::*;
 use tb::dut::run_checked;
 use tb::plane::float::{node_stream, raw_node, with_big_stack, CullFloatCtx, NodeVec};
-use tb::rtl_sim::SlabRtl;
+use tb::rtl_sim::TesterSim;
 
 /// Runs `n` cycles of a stream through the block, checked against the model.
 fn equivalence<P: PlaneFloatIo>(name: &'static str, seed: u64, cycles: usize, raw_every: u64) {
@@ -24,14 +24,14 @@ fn equivalence_run<P: PlaneFloatIo>(name: &str, seed: u64, cycles: usize, raw_ev
     let ctx = CullFloatCtx::new(P::cull_format(), P::planes());
     let stream: Vec<NodeVec> = node_stream(ctx, seed, raw_every, 7).take(cycles).collect();
     let tests = stream.iter().filter(|v| v.is_some()).count();
-    let mut dut = SlabRtl::wrap(P::make());
+    let mut dut = TesterSim::wrap(P::make());
     let t0 = std::time::Instant::now();
     let n = run_checked(&mut dut, stream.clone(), |v| {
         node_float(&ctx.cf, ctx.k, &v.0, &v.1)
     })
     .unwrap_or_else(|e| {
         let path = tb::out_dir().join("vcd").join(format!("{name}_fail.vcd"));
-        let mut d = SlabRtl::wrap(P::make()).vcd_to(&path).expect("VCD");
+        let mut d = TesterSim::wrap(P::make()).vcd_to(&path).expect("VCD");
         let _ = run_checked(&mut d, stream.clone(), |v| {
             node_float(&ctx.cf, ctx.k, &v.0, &v.1)
         });
@@ -147,7 +147,7 @@ fn raw_back_to_back() {
     let stream: Vec<NodeVec> = (0..10_000)
         .map(|_| Some(raw_node(&ctx.cf, 2, &mut rng)))
         .collect();
-    let mut dut = SlabRtl::wrap(P::make());
+    let mut dut = TesterSim::wrap(P::make());
     let n = run_checked(&mut dut, stream, |v| node_float(&ctx.cf, 2, &v.0, &v.1))
         .unwrap_or_else(|e| panic!("{e}"));
     assert_eq!(n, 10_000);

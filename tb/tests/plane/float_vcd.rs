@@ -6,7 +6,7 @@ use golden::plane::float::node_float;
 use rtl::plane::float::PlaneFloatIo;
 use tb::dut::run_checked;
 use tb::plane::float::{node_stream, with_big_stack, CullFloatCtx, NodeVec};
-use tb::rtl_sim::SlabRtl;
+use tb::rtl_sim::TesterSim;
 use tb::vcd_read::read_trace;
 
 #[test]
@@ -26,7 +26,7 @@ fn run() {
     stream.extend(std::iter::repeat_n(None, rtl::PLANE_FLOAT_LATENCY + 3));
     stream.extend(tests[1..].iter().cloned());
     {
-        let mut dut = SlabRtl::wrap(P::make()).vcd_to(&path).unwrap();
+        let mut dut = TesterSim::wrap(P::make()).vcd_to(&path).unwrap();
         let n = run_checked(&mut dut, stream, |v| node_float(&ctx.cf, ctx.k, &v.0, &v.1))
             .unwrap_or_else(|e| panic!("{e}"));
         assert_eq!(n, 4);

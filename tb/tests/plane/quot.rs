@@ -14,8 +14,8 @@ use rtl::slab::fix::sext;
 use std::cell::Cell;
 use tb::dut::run_checked;
 use tb::plane::fix::{node_fix_vectors, CullFixCtx};
-use tb::rtl_sim::SlabRtl;
-use tb::slab::ports::{xsim, SlabCtx};
+use tb::rtl_sim::TesterSim;
+use tb::slab::ports::{xsim, TesterCtx};
 
 /// The fraction option's testbench context: the plane format and plane count of [`CullFixCtx`], the
 /// model [`node_frac`], results as the packed fraction words of the ports.
@@ -73,7 +73,7 @@ fn agrees_with_fractions(
     }
 }
 
-impl SlabCtx for FracCtx {
+impl TesterCtx for FracCtx {
     type Ray = NodeFixRay;
     type Box = FixNode;
     type Out = PlaneFracOut;
@@ -136,7 +136,7 @@ fn rtl_matches_model_and_fractions<S: PlaneFracIo>(fmt: FixFormat, seed: u64) {
     // Vectors checked against cull_fix_fractions, nodes the planes cull after the slab test kept them,
     // results with a plane's entry, with a plane's exit.
     let counts: [Cell<u64>; 4] = Default::default();
-    let mut dut = SlabRtl::wrap(S::for_format(c.cf()));
+    let mut dut = TesterSim::wrap(S::for_format(c.cf()));
     let done = run_checked(&mut dut, c.vectors(seed, N), |v| {
         let o = c.model(&v.0, &v.1);
         let slab_hit = slab_fix(&c.cf().base, &v.0.ray, &v.1.b).hit;
@@ -237,7 +237,7 @@ fn fraction_option_is_conservative() {
 #[test]
 fn a_wrong_model_is_caught() {
     let c = FracCtx::new(FixFormat::b12(), 2);
-    let mut dut = SlabRtl::wrap(rtl::PlaneFracB12::<2>::new(c.cf()));
+    let mut dut = TesterSim::wrap(rtl::PlaneFracB12::<2>::new(c.cf()));
     let wrong = FracCtx(CullFixCtx { k: 0, ..c.0 });
     assert!(run_checked(&mut dut, c.vectors(5, 2_000), |v| node_frac(
         wrong.cf(),

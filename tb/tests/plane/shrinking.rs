@@ -10,8 +10,8 @@ use golden::plane::float::{node_float, CullFloatFormat};
 use tb::plane::fix::{raw_node_fix, CullFixCtx};
 use tb::plane::float::{raw_node, with_big_stack};
 use tb::prop::{expect_caught, shrinking_equivalence};
-use tb::rtl_sim::SlabRtl;
-use tb::slab::ports::SlabCtx;
+use tb::rtl_sim::TesterSim;
+use tb::slab::ports::TesterCtx;
 
 const CASES: u32 = 1_500;
 /// More words than a raw node draws (about 3 a field).
@@ -32,7 +32,7 @@ fn plane_fix_b12_k2_run(name: &str, flip: bool) {
         CASES,
         WORDS,
         |vcd| {
-            let d = SlabRtl::wrap(rtl::PlaneFixB12::<2>::new(&c.cf));
+            let d = TesterSim::wrap(rtl::PlaneFixB12::<2>::new(&c.cf));
             match vcd {
                 Some(p) => d.vcd_to(p).expect("VCD"),
                 None => d,
@@ -59,7 +59,7 @@ fn plane_float_e5m10_k2(name: &'static str, flip: bool) {
             CASES,
             WORDS,
             |vcd| {
-                let d = SlabRtl::wrap(<P as rtl::plane::float::PlaneFloatIo>::make());
+                let d = TesterSim::wrap(<P as rtl::plane::float::PlaneFloatIo>::make());
                 match vcd {
                     Some(p) => d.vcd_to(p).expect("VCD"),
                     None => d,

@@ -67,7 +67,7 @@ fn every_cut_configuration_matches_model_e6m5() {
     use rtl::slab::float::{cut, slab_float_latency, SlabFloat};
     macro_rules! each {
         ($($c:literal),*) => {$(
-            assert_eq!(<SlabFloat<6, 5, 12, $c> as rtl::SlabIo>::LATENCY, slab_float_latency($c));
+            assert_eq!(<SlabFloat<6, 5, 12, $c> as rtl::TesterIo>::LATENCY, slab_float_latency($c));
             equivalence_n::<SlabFloat<6, 5, 12, $c>>(concat!("slab_float_e6m5_c", $c), 400);
         )*};
     }
