@@ -396,7 +396,7 @@ impl Default for Args {
 /// or the RTL differs from the model; then the small sweep on the same scene (`out/sweep`).
 pub fn front_door(a: &Args, out: &Path) -> Result<(), String> {
     let scene = match &a.scene {
-        None => crate::scene::room(a.width, a.height),
+        None => crate::scene::box_room(a.width, a.height),
         Some(name) => crate::sweep_cmd::load_scene(name, 1)
             .and_then(|ts| crate::scene::from_tri(&ts, a.width, a.height, 48))?,
     };

@@ -36,8 +36,9 @@ fn aabb(min: [f64; 3], max: [f64; 3]) -> Aabb {
     Aabb::new(min.into(), max.into()).expect("finite")
 }
 
-/// The room: 20 x 6 x 20 units, camera at eye height looking in; `width x height` primary rays.
-pub fn room(width: usize, height: usize) -> Scene {
+/// The box room: 20 x 6 x 20 units, camera at eye height looking in; `width x height` primary rays. (Not
+/// the triangle scene `room` of `golden::scene::tri_scene`, which the sweeps use.)
+pub fn box_room(width: usize, height: usize) -> Scene {
     let mut boxes = vec![
         aabb([-10.0, -0.2, -10.0], [10.0, 0.0, 10.0]), // floor
         aabb([-10.0, 6.0, -10.0], [10.0, 6.2, 10.0]),  // ceiling
@@ -89,7 +90,7 @@ pub fn room(width: usize, height: usize) -> Scene {
         }
     }
     Scene {
-        name: "room".into(),
+        name: "box_room".into(),
         boxes,
         rays,
         width,
