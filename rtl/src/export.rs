@@ -6,7 +6,7 @@
 //!
 //! [`export_all`] writes the slab testers (the fixed one at 4 and at 6 clocks) and the cull-plane testers that the synthesis report compares
 //! (`scripts/synth plane_`): the table option `PlaneFix` over b8, b12 and b16 and the fraction option
-//! `PlaneFrac` over b12 and b16 with 1 and 4 planes, and the float `PlaneFloat` with 1 plane.
+//! `PlaneQuot` over b12 and b16 with 1 and 4 planes, and the float `PlaneFloat` with 1 plane.
 
 use crate::bundle::pair_fix::{BundleFixIo, BUNDLE_FIX_LATENCY};
 use crate::bundle::pair_float::BundleFloatIo;
@@ -201,7 +201,7 @@ pub enum Family {
         deep: bool,
     },
     /// The fixed chained slab + cull-plane tester, fraction option, `k` planes.
-    PlaneFrac { cf: CullFixFormat, k: usize },
+    PlaneQuot { cf: CullFixFormat, k: usize },
     /// The float chained slab + cull-plane tester, `k` planes.
     PlaneFloat { cf: CullFloatFormat, k: usize },
     /// The fixed AllHit / AnyHit bundle pair, with its cut points
@@ -267,7 +267,7 @@ impl Exported {
             Family::SlabFix { .. } => pick(slab_fix_deep_verilog()),
             Family::SlabFloat { f, cuts: 0 } => slab_float_verilog(&f).expect("instantiated"),
             Family::SlabFloat { .. } => pick(slab_float_deep_verilog()),
-            Family::PlaneFix { .. } | Family::PlaneFrac { .. } | Family::PlaneFloat { .. } => {
+            Family::PlaneFix { .. } | Family::PlaneQuot { .. } | Family::PlaneFloat { .. } => {
                 pick(plane_verilog())
             }
             Family::BundleFix { .. } => pick(bundle_fix_verilog()),
@@ -346,9 +346,9 @@ pub fn catalog() -> Vec<Exported> {
     for cf in &presets[1..] {
         for k in [1, 4] {
             add(
-                names::plane_frac_module(cf, k),
-                crate::plane::quot::PLANE_FRAC_LATENCY,
-                Family::PlaneFrac { cf: *cf, k },
+                names::plane_quot_module(cf, k),
+                crate::plane::quot::PLANE_QUOT_LATENCY,
+                Family::PlaneQuot { cf: *cf, k },
             );
         }
     }
@@ -459,20 +459,20 @@ pub fn plane_verilog() -> Vec<(String, String, usize)> {
         fix::<crate::PlaneFixB16P11<1>>(&b16),
         fix::<crate::PlaneFixB16P11<4>>(&b16),
         named(
-            names::plane_frac_module(&b12, 1),
-            crate::PlaneFracB12::<1>::new(&b12),
+            names::plane_quot_module(&b12, 1),
+            crate::PlaneQuotB12::<1>::new(&b12),
         ),
         named(
-            names::plane_frac_module(&b12, 4),
-            crate::PlaneFracB12::<4>::new(&b12),
+            names::plane_quot_module(&b12, 4),
+            crate::PlaneQuotB12::<4>::new(&b12),
         ),
         named(
-            names::plane_frac_module(&b16, 1),
-            crate::PlaneFracB16::<1>::new(&b16),
+            names::plane_quot_module(&b16, 1),
+            crate::PlaneQuotB16::<1>::new(&b16),
         ),
         named(
-            names::plane_frac_module(&b16, 4),
-            crate::PlaneFracB16::<4>::new(&b16),
+            names::plane_quot_module(&b16, 4),
+            crate::PlaneQuotB16::<4>::new(&b16),
         ),
     ];
     for (f, k) in crate::PLANE_FLOAT_CONFIGS {

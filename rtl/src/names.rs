@@ -88,7 +88,7 @@ pub fn plane_fix_module_of<S: PlaneFixIo>(cf: &CullFixFormat) -> String {
 }
 
 /// Module name of the fraction option, e.g. `plane_fix_frac_g12_i16f11_t20f6_n8_fd11_k4` (no table bits).
-pub fn plane_frac_module(cf: &CullFixFormat, k: usize) -> String {
+pub fn plane_quot_module(cf: &CullFixFormat, k: usize) -> String {
     format!(
         "plane_fix_frac_{}_n{}_fd{}_k{k}",
         cf.base.name(),

@@ -85,7 +85,7 @@ fn encodable(e: &Exported) -> Result<(), String> {
              from its datasheet's job protocol, or use `rtu run --bundles`"
         ));
     }
-    if matches!(e.family, Family::PlaneFrac { .. }) {
+    if matches!(e.family, Family::PlaneQuot { .. }) {
         return Err(format!(
             "module `{name}`: the fraction option reports its interval as exact quotients \
              (`num`, `den`, ...), not as t codes; encode and decode take the table option \
@@ -141,7 +141,7 @@ fn setup_from(
     let name = e.module.clone();
     let base = match e.family {
         Family::SlabFix { fmt, .. } => Some(fmt),
-        Family::PlaneFix { cf, .. } | Family::PlaneFrac { cf, .. } => Some(cf.base),
+        Family::PlaneFix { cf, .. } | Family::PlaneQuot { cf, .. } => Some(cf.base),
         _ => None,
     };
     let map = match base {
@@ -149,7 +149,7 @@ fn setup_from(
         None => None,
     };
     let k = match e.family {
-        Family::PlaneFix { k, .. } | Family::PlaneFrac { k, .. } | Family::PlaneFloat { k, .. } => {
+        Family::PlaneFix { k, .. } | Family::PlaneQuot { k, .. } | Family::PlaneFloat { k, .. } => {
             k
         }
         _ => 0,
@@ -193,7 +193,7 @@ macro_rules! with_ctx {
                 };
                 $body
             }
-            Family::PlaneFix { cf, k, .. } | Family::PlaneFrac { cf, k } => {
+            Family::PlaneFix { cf, k, .. } | Family::PlaneQuot { cf, k } => {
                 let map = s.map.expect("a grid for a fixed format");
                 let $ctx = CullFixCtx { cf, k };
                 let $q = |v: &Vector| fix_vector(&cf, &map, v);

@@ -40,7 +40,7 @@
 //! (exit, `A >= 0`; entry, `A < 0`) and `rl` otherwise, floored for an entry and ceiled for an exit, and
 //! saturated like the slab's products (an entry into `[-inf, largest finite]`, an exit into `[smallest
 //! finite, +inf]`). The result is a t code, so merging it with the slab's interval is a comparison. The
-//! other option measured, cross-multiplied fractions ([`cull_fix_fractions`]), is exact but keeps the
+//! other option measured, cross-multiplied fractions ([`cull_fix_quotients`]), is exact but keeps the
 //! interval as fractions; the figures that decided between them are in the README.
 //!
 //! Then `t_entry = max(slab entry, entry bounds)`, `t_exit = min(slab exit, exit bounds)`, and
@@ -522,7 +522,7 @@ pub fn cull_fix(
 /// division-free datapath carrying the interval as numerator/denominator pairs, compared by cross
 /// multiplication, computes), merged with the slab interval exactly. Returns `(hit, entry, exit)` in t code
 /// units. Used to measure what the reciprocal table's rounding costs.
-pub fn cull_fix_fractions(
+pub fn cull_fix_quotients(
     cf: &CullFixFormat,
     r: &FixRay,
     d: &FixDir,

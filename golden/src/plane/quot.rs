@@ -1,11 +1,11 @@
 //! The bit-accurate model of the fraction option of the fixed cull-plane tester
-//! (`rtl::plane::quot::PlaneFrac`): the slab test chained with `K` planes whose bounds are never
+//! (`rtl::plane::quot::PlaneQuot`): the slab test chained with `K` planes whose bounds are never
 //! rounded, each kept as the exact fraction `t* = num * 2^E / den` (t code units, `E = FD + FT - 1`) and
 //! ordered against the others and against the slab's t codes by cross-multiplication.
 //!
-//! [`node_frac`] is the model of the whole tester (it also fixes the tie-breaking); [`frac_effect`],
-//! [`frac_lt`], [`code_frac_cmp`] and [`frac_tree`] model its parts bit for bit. Its values are
-//! [`cull_fix_fractions`](crate::plane::fix::cull_fix_fractions)' (the exact model of record) for every
+//! [`node_quot`] is the model of the whole tester (it also fixes the tie-breaking); [`quot_effect`],
+//! [`quot_lt`], [`code_quot_cmp`] and [`quot_order_tree`] model its parts bit for bit. Its values are
+//! [`cull_fix_quotients`](crate::plane::fix::cull_fix_quotients)' (the exact model of record) for every
 //! node whose `den` intervals are not inverted.
 
 use crate::exact::{dyadic, Ext};
@@ -15,39 +15,39 @@ use crate::slab::fix::slab_fix;
 use std::cmp::Ordering;
 
 /// Slots of the tree.
-pub const FRAC_TREE_SLOTS: usize = 8;
+pub const QUOT_TREE_SLOTS: usize = 8;
 
 /// A bound as the fraction option outputs it: `den != 0`, the plane bound `num * 2^E / den` in t code
 /// units; `den == 0`, the slab's t code `num`.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Default)]
-pub struct Frac {
+pub struct Quot {
     pub num: i64,
     pub den: u64,
 }
 
 /// Output of the fraction option: the cull decision and the interval as chosen fractions.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Default)]
-pub struct PlaneFracOut {
+pub struct PlaneQuotOut {
     pub hit: bool,
-    pub t_entry: Frac,
-    pub t_exit: Frac,
+    pub t_entry: Quot,
+    pub t_exit: Quot,
 }
 
 /// The bound scale exponent `E = FD + FT - 1`: a fraction `num / den` is `num * 2^E / den` t code units.
-pub fn frac_scale(cf: &CullFixFormat) -> u32 {
+pub fn quot_scale(cf: &CullFixFormat) -> u32 {
     cf.fd + cf.base.ft - 1
 }
 
 /// Denominator bits `MB = EB - 1` of the fraction option.
-pub fn frac_den_bits(cf: &CullFixFormat) -> u32 {
+pub fn quot_den_bits(cf: &CullFixFormat) -> u32 {
     cf.den_bits() - 1
 }
 
-/// The exact value of a [`Frac`] in t code units, as [`cull_fix_fractions`](crate::plane::fix::cull_fix_fractions) returns it.
-pub fn frac_value(cf: &CullFixFormat, f: &Frac) -> Ext {
+/// The exact value of a [`Quot`] in t code units, as [`cull_fix_quotients`](crate::plane::fix::cull_fix_quotients) returns it.
+pub fn quot_value(cf: &CullFixFormat, f: &Quot) -> Ext {
     let fmt = &cf.base;
     if f.den != 0 {
-        Ext::Fin(dyadic(f.num, frac_scale(cf) as i32) / dyadic(f.den as i64, 0))
+        Ext::Fin(dyadic(f.num, quot_scale(cf) as i32) / dyadic(f.den as i64, 0))
     } else if f.num == fmt.t_neg_inf() {
         Ext::NegInf
     } else if f.num == fmt.t_pos_inf() {
@@ -64,22 +64,22 @@ fn code_vs(cf: &CullFixFormat, c: i64, (num, den): (i64, u64)) -> Ordering {
     } else if c == cf.base.t_pos_inf() {
         Ordering::Greater
     } else {
-        code_frac_cmp(frac_scale(cf), c, num, den)
+        code_quot_cmp(quot_scale(cf), c, num, den)
     }
 }
 
-/// The bit-accurate model of `rtl::plane::quot::PlaneFrac` (and of every tie it breaks): slab test then `k` planes, the
-/// bounds as fractions. Its values are `cull_fix_fractions`' for every node whose `den` intervals are
+/// The bit-accurate model of `rtl::plane::quot::PlaneQuot` (and of every tie it breaks): slab test then `k` planes, the
+/// bounds as fractions. Its values are `cull_fix_quotients`' for every node whose `den` intervals are
 /// not inverted (all that quantisation produces; the model of record has no value for a zero `den`).
-pub fn node_frac(cf: &CullFixFormat, k: usize, r: &NodeFixRay, n: &FixNode) -> PlaneFracOut {
+pub fn node_quot(cf: &CullFixFormat, k: usize, r: &NodeFixRay, n: &FixNode) -> PlaneQuotOut {
     let slab = slab_fix(&cf.base, &r.ray, &n.b);
     let (sb, eb) = (cf.s_bits() as usize, cf.den_bits() as usize);
-    let mb = frac_den_bits(cf) as usize;
+    let mb = quot_den_bits(cf) as usize;
     let (mut en, mut ex, mut par) = ([None; MAX_PLANES], [None; MAX_PLANES], false);
     for (i, p) in n.planes[..k].iter().enumerate() {
         let (s, dl, dh) = plane_sums(&r.ray, &r.dir, &n.b, p);
         // The sums as the RTL's registers hold them.
-        let e = frac_effect(
+        let e = quot_effect(
             sb,
             mb,
             sext(code(s, sb), sb),
@@ -91,31 +91,31 @@ pub fn node_frac(cf: &CullFixFormat, k: usize, r: &NodeFixRay, n: &FixNode) -> P
         ex[i] = e.is_exit.then_some(f);
         par |= e.par;
     }
-    let pe = frac_tree(false, en);
-    let px = frac_tree(true, ex);
+    let pe = quot_order_tree(false, en);
+    let px = quot_order_tree(true, ex);
     let entry = match pe {
-        Some(f) if code_vs(cf, slab.t_entry, f) == Ordering::Less => Frac { num: f.0, den: f.1 },
-        _ => Frac {
+        Some(f) if code_vs(cf, slab.t_entry, f) == Ordering::Less => Quot { num: f.0, den: f.1 },
+        _ => Quot {
             num: slab.t_entry,
             den: 0,
         },
     };
     let exit = match px {
-        Some(f) if code_vs(cf, slab.t_exit, f) == Ordering::Greater => Frac { num: f.0, den: f.1 },
-        _ => Frac {
+        Some(f) if code_vs(cf, slab.t_exit, f) == Ordering::Greater => Quot { num: f.0, den: f.1 },
+        _ => Quot {
             num: slab.t_exit,
             den: 0,
         },
     };
-    PlaneFracOut {
-        hit: slab.hit && !par && frac_value(cf, &entry) <= frac_value(cf, &exit),
+    PlaneQuotOut {
+        hit: slab.hit && !par && quot_value(cf, &entry) <= quot_value(cf, &exit),
         t_entry: entry,
         t_exit: exit,
     }
 }
 
 /// The packed output word of a fraction (the ports' layout), for testbenches.
-pub fn frac_word(cf: &CullFixFormat, f: &Frac) -> u64 {
+pub fn quot_word(cf: &CullFixFormat, f: &Quot) -> u64 {
     let sb = cf.s_bits() as usize;
     let low = if f.den == 0 {
         code(f.num, cf.base.t as usize)
@@ -125,9 +125,9 @@ pub fn frac_word(cf: &CullFixFormat, f: &Frac) -> u64 {
     (f.den << sb) | low
 }
 
-/// What `rtl::plane::quot_bound::PlaneFracBound` outputs, as native values (`num` sign-extended).
+/// What `rtl::plane::quot_bound::PlaneQuotBound` outputs, as native values (`num` sign-extended).
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
-pub struct FracEffect {
+pub struct QuotEffect {
     pub is_entry: bool,
     pub is_exit: bool,
     pub par: bool,
@@ -135,9 +135,9 @@ pub struct FracEffect {
     pub den: u64,
 }
 
-/// The native model of `rtl::plane::quot_bound::PlaneFracBound` with `sb` numerator and `mb` denominator bits, bit for bit the
+/// The native model of `rtl::plane::quot_bound::PlaneQuotBound` with `sb` numerator and `mb` denominator bits, bit for bit the
 /// Verilog.
-pub fn frac_effect(sb: usize, mb: usize, s: i64, dl: i64, dh: i64) -> FracEffect {
+pub fn quot_effect(sb: usize, mb: usize, s: i64, dl: i64, dh: i64) -> QuotEffect {
     let ex = dl > 0;
     let en = !ex && dh < 0;
     let mag = match (ex, s > 0, s < 0) {
@@ -146,7 +146,7 @@ pub fn frac_effect(sb: usize, mb: usize, s: i64, dl: i64, dh: i64) -> FracEffect
         (false, _, true) => -dh,
         (false, _, false) => -dl,
     };
-    FracEffect {
+    QuotEffect {
         is_entry: en,
         is_exit: ex,
         par: !ex && !en && dl == 0 && dh == 0 && s > 0,
@@ -156,27 +156,27 @@ pub fn frac_effect(sb: usize, mb: usize, s: i64, dl: i64, dh: i64) -> FracEffect
 }
 
 /// `a_num / a_den < b_num / b_den` by cross-multiplication, exactly (the model of
-/// `rtl::plane::quot_cmp::FracCmp`).
-pub fn frac_lt(a_num: i64, a_den: u64, b_num: i64, b_den: u64) -> bool {
+/// `rtl::plane::quot_cmp::QuotCmp`).
+pub fn quot_lt(a_num: i64, a_den: u64, b_num: i64, b_den: u64) -> bool {
     (a_num as i128) * (b_den as i128) < (b_num as i128) * (a_den as i128)
 }
 
-/// The order of `c * den` and `num * 2^e`, exactly (the model of `rtl::plane::quot_code_cmp::CodeFracCmp`).
-pub fn code_frac_cmp(e: u32, c: i64, num: i64, den: u64) -> Ordering {
+/// The order of `c * den` and `num * 2^e`, exactly (the model of `rtl::plane::quot_code_cmp::CodeQuotCmp`).
+pub fn code_quot_cmp(e: u32, c: i64, num: i64, den: u64) -> Ordering {
     ((c as i128) * (den as i128)).cmp(&((num as i128) << e))
 }
 
-/// The native model of `rtl::plane::quot_tree::FracTree`: the winner of `slots` (`None` empty, else `(num, den)`), pairwise
+/// The native model of `rtl::plane::quot_tree::QuotTree`: the winner of `slots` (`None` empty, else `(num, den)`), pairwise
 /// in the tree's order, the higher slot of a pair winning only when strictly better.
-pub fn frac_tree(
+pub fn quot_order_tree(
     want_min: bool,
-    slots: [Option<(i64, u64)>; FRAC_TREE_SLOTS],
+    slots: [Option<(i64, u64)>; QUOT_TREE_SLOTS],
 ) -> Option<(i64, u64)> {
     let better = |x: (i64, u64), y: (i64, u64)| {
         if want_min {
-            frac_lt(x.0, x.1, y.0, y.1)
+            quot_lt(x.0, x.1, y.0, y.1)
         } else {
-            frac_lt(y.0, y.1, x.0, x.1)
+            quot_lt(y.0, y.1, x.0, x.1)
         }
     };
     let mut level = slots.to_vec();

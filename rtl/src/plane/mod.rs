@@ -11,9 +11,9 @@
 //! | [`bound_scale::BoundScale`] | `plane/bound_scale.rs` | `golden::plane::fix::scale_product` |
 //! | [`float::PlaneFloat`] | `plane/float.rs` | `golden::plane::float::cull_float` |
 //! | [`recip::FpRecip`] | `plane/recip.rs` | `golden::plane::float::recip_float` |
-//! | [`quot::PlaneFrac`] | `plane/quot.rs` | `golden::plane::quot::node_frac` (the quotient option: bounds kept as exact quotients) |
-//! | [`quot_bound::PlaneFracBound`] | `plane/quot_bound.rs` | `golden::plane::fix::cull_fix_fractions` |
-//! | [`quot_cmp::FracCmp`], [`quot_code_cmp::CodeFracCmp`], [`quot_pick::FracPick`], [`quot_tree::FracTree`] | `plane/quot_*.rs` | orderings of quotients by cross-multiplication |
+//! | [`quot::PlaneQuot`] | `plane/quot.rs` | `golden::plane::quot::node_quot` (the quotient option: bounds kept as exact quotients) |
+//! | [`quot_bound::PlaneQuotBound`] | `plane/quot_bound.rs` | `golden::plane::fix::cull_fix_quotients` |
+//! | [`quot_cmp::QuotCmp`], [`quot_code_cmp::CodeQuotCmp`], [`quot_pick::QuotPick`], [`quot_tree::QuotTree`] | `plane/quot_*.rs` | orderings of quotients by cross-multiplication |
 //!
 //! Which configurations exist, and the dispatch over them: [`registry`].
 

@@ -1,15 +1,15 @@
-//! `PlaneFrac`: the fraction option of the fixed-point cull-plane tester — the slab tester chained with
+//! `PlaneQuot`: the fraction option of the fixed-point cull-plane tester — the slab tester chained with
 //! `K` cull planes whose bounds are never rounded: each is kept as the exact fraction
 //! `t* = num * 2^E / den` (t code units, `E = FD + FT - 1`) and ordered against the others and against
 //! the slab's t codes by cross-multiplication, so no division, reciprocal table or rounding appears
-//! anywhere. Fully pipelined (one node test per clock), [`PLANE_FRAC_LATENCY`] clocks. Its result is
-//! `golden::plane::fix::cull_fix_fractions` exactly (value for value; [`node_frac`](golden::plane::quot::node_frac) is the bit-accurate
+//! anywhere. Fully pipelined (one node test per clock), [`PLANE_QUOT_LATENCY`] clocks. Its result is
+//! `golden::plane::fix::cull_fix_quotients` exactly (value for value; [`node_quot`](golden::plane::quot::node_quot) is the bit-accurate
 //! model, which also fixes the tie-breaking); compare [`crate::plane::fix::PlaneFix`], the table option,
 //! built on the same front end.
 //!
 //! # Why it is conservative
 //! Each fraction is the bound that holds for every `den` of the plane's interval (`golden::plane::fix`
-//! derives it; [`PlaneFracBound`] forms it) and it is never rounded, so the entry it gives is the
+//! derives it; [`PlaneQuotBound`] forms it) and it is never rounded, so the entry it gives is the
 //! exact largest lower bound and the exit the exact smallest upper bound the stored planes allow. A node
 //! is culled only when `max(entries) > min(exits)` exactly, i.e. when the clipped interval is truly empty
 //! for the quantised inputs (the quantisation itself is outward). The table option can only lose culls
@@ -17,44 +17,44 @@
 //!
 //! # Parameters
 //! Those of [`crate::plane::fix::PlaneFix`] (`G, D, I, T, N, DB, WB, SB, EB, K`), plus `MB = EB - 1`
-//! (denominator bits) and `FB = SB + MB` (a packed fraction), checked by [`PlaneFrac::new`].
+//! (denominator bits) and `FB = SB + MB` (a packed fraction), checked by [`PlaneQuot::new`].
 //!
 //! # Ports
 //! Inputs: those of `PlaneFix`. Outputs: `valid_out`, `tag_out`, `hit` (not culled), and `t_entry`,
 //! `t_exit`, each a fraction packed as `{den, num}` (`den` in the top `MB` bits, `num` in the low `SB`):
 //! `den != 0` is the plane bound `num * 2^E / den`; `den = 0` is the slab's t code in the low `T` bits of
-//! `num` (`+-inf` codes included). [`Frac`] is the unpacked form.
+//! `num` (`+-inf` codes included). [`Quot`] is the unpacked form.
 //!
 //! # Stages
 //! 1. `_q1`: per plane, [`PlaneSums`] (as `PlaneFix`); the slab tester runs in parallel (out at clock 4).
-//! 2. `_q2`: per plane, [`PlaneFracBound`]: entry/exit flags, the fraction, the parallel-cull flag.
-//! 3. to 5. two [`FracTree`]s: the largest entry and the smallest exit fraction over eight slots (slots
+//! 2. `_q2`: per plane, [`PlaneQuotBound`]: entry/exit flags, the fraction, the parallel-cull flag.
+//! 3. to 5. two [`QuotTree`]s: the largest entry and the smallest exit fraction over eight slots (slots
 //!    from `K` on are empty constants, which synthesis removes), one cross-multiplied comparison per level;
 //!    the slab's result and the OR of the parallel culls wait in registers.
 //! 6. `_q6`: the merge with the slab's codes and the cull decision, all comparisons in parallel:
-//!    `entry = max(slab entry, plane entry)` and `exit = min(slab exit, plane exit)` ([`CodeFracCmp`]),
+//!    `entry = max(slab entry, plane entry)` and `exit = min(slab exit, plane exit)` ([`CodeQuotCmp`]),
 //!    and `hit = slab hit && no parallel cull && entry <= exit`, where `entry <= exit` is the AND of the
-//!    four pairwise `<=` of {slab entry, plane entry} against {slab exit, plane exit} (one [`FracCmp`],
-//!    two `CodeFracCmp`s and a t-code comparison), so the merge's result is not waited for.
+//!    four pairwise `<=` of {slab entry, plane entry} against {slab exit, plane exit} (one [`QuotCmp`],
+//!    two `CodeQuotCmp`s and a t-code comparison), so the merge's result is not waited for.
 
 use crate::delay::Delay3;
 use crate::io::TesterIo;
-use crate::plane::quot_bound::PlaneFracBound;
-use crate::plane::quot_cmp::FracCmp;
-use crate::plane::quot_code_cmp::CodeFracCmp;
-use crate::plane::quot_tree::FracTree;
+use crate::plane::quot_bound::PlaneQuotBound;
+use crate::plane::quot_cmp::QuotCmp;
+use crate::plane::quot_code_cmp::CodeQuotCmp;
+use crate::plane::quot_tree::QuotTree;
 use crate::plane::sums::PlaneSums;
 use crate::slab::fix::{code, sext, SlabFix, TAG_BITS};
 use golden::plane::fix::{CullFixFormat, FixNode, NodeFixRay, MAX_PLANES};
-use golden::plane::quot::{frac_den_bits, frac_scale, Frac, PlaneFracOut};
+use golden::plane::quot::{quot_den_bits, quot_scale, PlaneQuotOut, Quot};
 use rust_hdl::prelude::*;
 
-/// Clocks from a node test entering `PlaneFrac` to its result leaving.
-pub const PLANE_FRAC_LATENCY: usize = 6;
+/// Clocks from a node test entering `PlaneQuot` to its result leaving.
+pub const PLANE_QUOT_LATENCY: usize = 6;
 
 /// The fraction option of the chained fixed tester; see the module documentation.
 #[derive(LogicBlock)]
-pub struct PlaneFrac<
+pub struct PlaneQuot<
     const G: usize,
     const D: usize,
     const I: usize,
@@ -110,7 +110,7 @@ pub struct PlaneFrac<
     dl_q1: [DFF<Bits<EB>>; K],
     dh_q1: [DFF<Bits<EB>>; K],
     // stage 2 (eight slots; those from K on are constants)
-    bound: [PlaneFracBound<SB, EB, MB>; K],
+    bound: [PlaneQuotBound<SB, EB, MB>; K],
     en_q2: [DFF<Bit>; MAX_PLANES],
     ex_q2: [DFF<Bit>; MAX_PLANES],
     num_q2: [DFF<Bits<SB>>; MAX_PLANES],
@@ -118,8 +118,8 @@ pub struct PlaneFrac<
     par_q2: [DFF<Bit>; MAX_PLANES],
     // stages 3-5
     par_l3: Signal<Local, Bit>,
-    tree_en: FracTree<SB, MB>,
-    tree_ex: FracTree<SB, MB>,
+    tree_en: QuotTree<SB, MB>,
+    tree_ex: QuotTree<SB, MB>,
     par_d5: Delay3<Bit>,
     slab_en_q5: DFF<Bits<T>>,
     slab_ex_q5: DFF<Bits<T>>,
@@ -131,11 +131,11 @@ pub struct PlaneFrac<
     ce_pinf: Signal<Local, Bit>,
     cx_ninf: Signal<Local, Bit>,
     cx_pinf: Signal<Local, Bit>,
-    ce_pe: CodeFracCmp<T, SB, MB>,
-    ce_px: CodeFracCmp<T, SB, MB>,
-    cx_pe: CodeFracCmp<T, SB, MB>,
-    cx_px: CodeFracCmp<T, SB, MB>,
-    px_pe: FracCmp<SB, MB>,
+    ce_pe: CodeQuotCmp<T, SB, MB>,
+    ce_px: CodeQuotCmp<T, SB, MB>,
+    cx_pe: CodeQuotCmp<T, SB, MB>,
+    cx_px: CodeQuotCmp<T, SB, MB>,
+    px_pe: QuotCmp<SB, MB>,
     entry_n_q6: DFF<Bits<SB>>,
     entry_d_q6: DFF<Bits<MB>>,
     exit_n_q6: DFF<Bits<SB>>,
@@ -158,7 +158,7 @@ impl<
         const MB: usize,
         const FB: usize,
         const K: usize,
-    > PlaneFrac<G, D, I, T, N, DB, WB, SB, EB, MB, FB, K>
+    > PlaneQuot<G, D, I, T, N, DB, WB, SB, EB, MB, FB, K>
 {
     /// A tester for `cf`, whose widths must equal the parameters.
     pub fn new(cf: &CullFixFormat) -> Self {
@@ -168,15 +168,15 @@ impl<
                 && cf.w_bits() as usize == WB
                 && cf.s_bits() as usize == SB
                 && cf.den_bits() as usize == EB
-                && frac_den_bits(cf) as usize == MB
+                && quot_den_bits(cf) as usize == MB
                 && FB == SB + MB
                 && FB <= 64
                 && (1..=MAX_PLANES).contains(&K),
-            "PlaneFrac<..,{N},{DB},{WB},{SB},{EB},{MB},{FB},{K}> does not match plane format {}",
+            "PlaneQuot<..,{N},{DB},{WB},{SB},{EB},{MB},{FB},{K}> does not match plane format {}",
             cf.name()
         );
         let t = T as u32;
-        let e = frac_scale(cf);
+        let e = quot_scale(cf);
         Self {
             clock: Default::default(),
             rst: Default::default(),
@@ -222,8 +222,8 @@ impl<
             den_q2: Default::default(),
             par_q2: Default::default(),
             par_l3: Default::default(),
-            tree_en: FracTree::new(false),
-            tree_ex: FracTree::new(true),
+            tree_en: QuotTree::new(false),
+            tree_ex: QuotTree::new(true),
             par_d5: Default::default(),
             slab_en_q5: Default::default(),
             slab_ex_q5: Default::default(),
@@ -234,10 +234,10 @@ impl<
             ce_pinf: Default::default(),
             cx_ninf: Default::default(),
             cx_pinf: Default::default(),
-            ce_pe: CodeFracCmp::new(e, false),
-            ce_px: CodeFracCmp::new(e, true),
-            cx_pe: CodeFracCmp::new(e, false),
-            cx_px: CodeFracCmp::new(e, true),
+            ce_pe: CodeQuotCmp::new(e, false),
+            ce_px: CodeQuotCmp::new(e, true),
+            cx_pe: CodeQuotCmp::new(e, false),
+            cx_px: CodeQuotCmp::new(e, true),
             px_pe: Default::default(),
             entry_n_q6: Default::default(),
             entry_d_q6: Default::default(),
@@ -250,19 +250,19 @@ impl<
     }
 
     /// A packed output fraction, unpacked.
-    fn unpack(word: u64) -> Frac {
+    fn unpack(word: u64) -> Quot {
         let den = word >> SB;
         let num = if den == 0 {
             sext(word & ((1 << T) - 1), T)
         } else {
             sext(word & ((1 << SB) - 1), SB)
         };
-        Frac { num, den }
+        Quot { num, den }
     }
 }
 
 /// The fraction option of any width and plane count, built for a plane format.
-pub trait PlaneFracIo: TesterIo<Ray = NodeFixRay, Box = FixNode, Out = PlaneFracOut> {
+pub trait PlaneQuotIo: TesterIo<Ray = NodeFixRay, Box = FixNode, Out = PlaneQuotOut> {
     /// Planes per node.
     const PLANES: usize;
     /// A tester for `cf` (whose widths must match the block's).
@@ -282,7 +282,7 @@ impl<
         const MB: usize,
         const FB: usize,
         const K: usize,
-    > PlaneFracIo for PlaneFrac<G, D, I, T, N, DB, WB, SB, EB, MB, FB, K>
+    > PlaneQuotIo for PlaneQuot<G, D, I, T, N, DB, WB, SB, EB, MB, FB, K>
 {
     const PLANES: usize = K;
     fn for_format(cf: &CullFixFormat) -> Self {
@@ -303,12 +303,12 @@ impl<
         const MB: usize,
         const FB: usize,
         const K: usize,
-    > TesterIo for PlaneFrac<G, D, I, T, N, DB, WB, SB, EB, MB, FB, K>
+    > TesterIo for PlaneQuot<G, D, I, T, N, DB, WB, SB, EB, MB, FB, K>
 {
     type Ray = NodeFixRay;
     type Box = FixNode;
-    type Out = PlaneFracOut;
-    const LATENCY: usize = PLANE_FRAC_LATENCY;
+    type Out = PlaneQuotOut;
+    const LATENCY: usize = PLANE_QUOT_LATENCY;
 
     fn set_clock(&mut self, high: bool) {
         self.clock.next = Clock { clk: high };
@@ -348,11 +348,11 @@ impl<
         }
     }
 
-    fn result(&self) -> Option<(u16, PlaneFracOut)> {
+    fn result(&self) -> Option<(u16, PlaneQuotOut)> {
         self.valid_out.val().then(|| {
             (
                 self.tag_out.val().to_u64() as u16,
-                PlaneFracOut {
+                PlaneQuotOut {
                     hit: self.hit.val(),
                     t_entry: Self::unpack(self.t_entry.val().to_u64()),
                     t_exit: Self::unpack(self.t_exit.val().to_u64()),
@@ -386,7 +386,7 @@ impl<
         const MB: usize,
         const FB: usize,
         const K: usize,
-    > Logic for PlaneFrac<G, D, I, T, N, DB, WB, SB, EB, MB, FB, K>
+    > Logic for PlaneQuot<G, D, I, T, N, DB, WB, SB, EB, MB, FB, K>
 {
     #[hdl_gen]
     fn update(&mut self) {

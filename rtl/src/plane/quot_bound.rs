@@ -1,6 +1,6 @@
-//! `PlaneFracBound`: what one cull plane does to the ray's interval, from its sums, in the fraction
+//! `PlaneQuotBound`: what one cull plane does to the ray's interval, from its sums, in the fraction
 //! option: the bound `t* = num * 2^E / den` kept as the exact pair `(num, den)` instead of a t code
-//! (`golden::plane::fix::cull_fix_fractions`; compare [`crate::plane::bound::PlaneBound`], the table
+//! (`golden::plane::fix::cull_fix_quotients`; compare [`crate::plane::bound::PlaneBound`], the table
 //! option). Combinational.
 //!
 //! From `S_lo`, `den_lo`, `den_hi` (`golden::plane::fix` documents why each choice is the conservative
@@ -17,17 +17,17 @@
 //! (`3 * 2^(N-1) * 2^(G+1) + 2^(WB-1) < 2^(G+N+4)`), so `-S_lo` never overflows. `den` is the magnitude in
 //! `MB = EB - 1` bits: `|den| <= 3 * 2^(N-1) * 2^(DB-1) < 2^(EB-1)`. For a `den` interval that quantisation
 //! produces (`den_lo <= den_hi`) the chosen magnitude is positive; an inverted interval (never produced)
-//! gives the same wrapped bits here and in [`PlaneFracBound::eval`].
+//! gives the same wrapped bits here and in [`PlaneQuotBound::eval`].
 //!
 //! Outputs `is_entry`, `is_exit`, `par`, `num`, `den` (the last two meaningful for an entry or exit plane).
 
 use crate::slab::fix::{code, sext};
-use golden::plane::quot::frac_effect;
+use golden::plane::quot::quot_effect;
 use rust_hdl::prelude::*;
 
 /// One plane's effect as a fraction; see the module documentation.
 #[derive(LogicBlock)]
-pub struct PlaneFracBound<const SB: usize, const EB: usize, const MB: usize> {
+pub struct PlaneQuotBound<const SB: usize, const EB: usize, const MB: usize> {
     pub s: Signal<In, Bits<SB>>,
     pub den_lo: Signal<In, Bits<EB>>,
     pub den_hi: Signal<In, Bits<EB>>,
@@ -38,11 +38,11 @@ pub struct PlaneFracBound<const SB: usize, const EB: usize, const MB: usize> {
     pub par: Signal<Out, Bit>,
 }
 
-impl<const SB: usize, const EB: usize, const MB: usize> Default for PlaneFracBound<SB, EB, MB> {
+impl<const SB: usize, const EB: usize, const MB: usize> Default for PlaneQuotBound<SB, EB, MB> {
     fn default() -> Self {
         assert!(
             MB + 1 == EB && SB < 63 && EB < 63,
-            "PlaneFracBound<{SB},{EB},{MB}>: need MB = EB - 1"
+            "PlaneQuotBound<{SB},{EB},{MB}>: need MB = EB - 1"
         );
         Self {
             s: Default::default(),
@@ -57,9 +57,9 @@ impl<const SB: usize, const EB: usize, const MB: usize> Default for PlaneFracBou
     }
 }
 
-impl<const SB: usize, const EB: usize, const MB: usize> Logic for PlaneFracBound<SB, EB, MB> {
+impl<const SB: usize, const EB: usize, const MB: usize> Logic for PlaneQuotBound<SB, EB, MB> {
     fn update(&mut self) {
-        let e = frac_effect(
+        let e = quot_effect(
             SB,
             MB,
             sext(self.s.val().to_u64(), SB),

@@ -1,4 +1,4 @@
-//! `FracCmp`: the order of two fractions with positive denominators by cross-multiplication, no
+//! `QuotCmp`: the order of two fractions with positive denominators by cross-multiplication, no
 //! division: `a/ma < b/mb` iff `a * mb < b * ma`. Combinational. The comparison of the fraction option
 //! of the cull-plane tester ([`crate::plane::quot`]).
 //!
@@ -13,12 +13,12 @@
 //!
 //! Two signed `AB x (MB + 1)`-bit products are beyond rust-hdl 0.46 (16x16 multiplies only, values over
 //! 32 bits stored bit by bit), so, like [`crate::slab::mul_round::MulRound`], this leaf has a native model
-//! ([`frac_lt`]) and hand-written Verilog; cross-simulation checks that they agree.
+//! ([`quot_lt`]) and hand-written Verilog; cross-simulation checks that they agree.
 //!
 //! ```
 //! use rust_hdl::prelude::*;
-//! use rtl::plane::quot_cmp::FracCmp;
-//! let mut u = FracCmp::<8, 6>::default();
+//! use rtl::plane::quot_cmp::QuotCmp;
+//! let mut u = QuotCmp::<8, 6>::default();
 //! u.connect_all();
 //! u.a_num.next = bits::<8>(1); // 1/3
 //! u.a_den.next = bits::<6>(3);
@@ -29,12 +29,12 @@
 //! ```
 
 use crate::slab::fix::sext;
-use golden::plane::quot::frac_lt;
+use golden::plane::quot::quot_lt;
 use rust_hdl::prelude::*;
 
 /// Cross-multiplied comparison of two fractions; see the module documentation.
 #[derive(LogicBlock)]
-pub struct FracCmp<const AB: usize, const MB: usize> {
+pub struct QuotCmp<const AB: usize, const MB: usize> {
     pub a_num: Signal<In, Bits<AB>>,
     pub a_den: Signal<In, Bits<MB>>,
     pub b_num: Signal<In, Bits<AB>>,
@@ -42,11 +42,11 @@ pub struct FracCmp<const AB: usize, const MB: usize> {
     pub lt: Signal<Out, Bit>,
 }
 
-impl<const AB: usize, const MB: usize> Default for FracCmp<AB, MB> {
+impl<const AB: usize, const MB: usize> Default for QuotCmp<AB, MB> {
     fn default() -> Self {
         assert!(
             AB + MB < 126,
-            "FracCmp<{AB},{MB}>: products must fit an i128"
+            "QuotCmp<{AB},{MB}>: products must fit an i128"
         );
         Self {
             a_num: Default::default(),
@@ -58,12 +58,12 @@ impl<const AB: usize, const MB: usize> Default for FracCmp<AB, MB> {
     }
 }
 
-impl<const AB: usize, const MB: usize> Logic for FracCmp<AB, MB> {
+impl<const AB: usize, const MB: usize> Logic for QuotCmp<AB, MB> {
     fn update(&mut self) {
         let a = sext(self.a_num.val().to_u64(), AB);
         let b = sext(self.b_num.val().to_u64(), AB);
         let (ma, mb) = (self.a_den.val().to_u64(), self.b_den.val().to_u64());
-        self.lt.next = frac_lt(a, ma, b, mb);
+        self.lt.next = quot_lt(a, ma, b, mb);
     }
 
     fn connect(&mut self) {

@@ -1,4 +1,4 @@
-//! `CodeFracCmp`: the order of a t code `c` and a fraction `num * 2^E / den` (`den > 0`) by
+//! `CodeQuotCmp`: the order of a t code `c` and a fraction `num * 2^E / den` (`den > 0`) by
 //! cross-multiplication: `c < num 2^E / den` iff `c * den < num * 2^E`. Combinational. It merges the
 //! slab tester's t codes with the plane bounds of the fraction option ([`crate::plane::quot`]).
 //!
@@ -12,17 +12,17 @@
 //! `y`: `c > fraction` when `greater`, else `c < fraction`; exact: `c * den` is kept at `T + MB + 1` bits
 //! and `num * 2^E` is a wired shift.
 //!
-//! A leaf with a native model ([`code_frac_cmp`]) and hand-written Verilog, as
-//! [`crate::plane::quot_cmp::FracCmp`].
+//! A leaf with a native model ([`code_quot_cmp`]) and hand-written Verilog, as
+//! [`crate::plane::quot_cmp::QuotCmp`].
 
 use crate::slab::fix::sext;
-use golden::plane::quot::code_frac_cmp;
+use golden::plane::quot::code_quot_cmp;
 use rust_hdl::prelude::*;
 use std::cmp::Ordering;
 
 /// Cross-multiplied comparison of a t code with a scaled fraction; see the module documentation.
 #[derive(LogicBlock)]
-pub struct CodeFracCmp<const T: usize, const AB: usize, const MB: usize> {
+pub struct CodeQuotCmp<const T: usize, const AB: usize, const MB: usize> {
     pub c: Signal<In, Bits<T>>,
     pub num: Signal<In, Bits<AB>>,
     pub den: Signal<In, Bits<MB>>,
@@ -33,12 +33,12 @@ pub struct CodeFracCmp<const T: usize, const AB: usize, const MB: usize> {
     greater: Constant<Bit>,
 }
 
-impl<const T: usize, const AB: usize, const MB: usize> CodeFracCmp<T, AB, MB> {
+impl<const T: usize, const AB: usize, const MB: usize> CodeQuotCmp<T, AB, MB> {
     /// A comparator of `c` with `num * 2^e / den`, telling `c > fraction` (`greater`) or `c < fraction`.
     pub fn new(e: u32, greater: bool) -> Self {
         assert!(
             e >= 1 && T + MB < 126 && AB + (e as usize) < 126,
-            "CodeFracCmp<{T},{AB},{MB}> E {e}: products must fit an i128"
+            "CodeQuotCmp<{T},{AB},{MB}> E {e}: products must fit an i128"
         );
         Self {
             c: Default::default(),
@@ -65,9 +65,9 @@ fn sign_extend(name: &str, src: &str, from: usize, to: usize) -> String {
     }
 }
 
-impl<const T: usize, const AB: usize, const MB: usize> Logic for CodeFracCmp<T, AB, MB> {
+impl<const T: usize, const AB: usize, const MB: usize> Logic for CodeQuotCmp<T, AB, MB> {
     fn update(&mut self) {
-        let o = code_frac_cmp(
+        let o = code_quot_cmp(
             self.e.val().to_u64() as u32,
             sext(self.c.val().to_u64(), T),
             sext(self.num.val().to_u64(), AB),

@@ -1,4 +1,4 @@
-//! `FracPick`: the larger (or smaller) of two optional fractions, one node of a [`crate::plane::quot_tree`].
+//! `QuotPick`: the larger (or smaller) of two optional fractions, one node of a [`crate::plane::quot_tree`].
 //! Combinational.
 //!
 //! # Inputs
@@ -6,15 +6,15 @@
 //! `AB`-bit numerator and a positive `MB`-bit denominator; a constant chooses min or max.
 //!
 //! # Outputs
-//! `v`, `n`, `d`: slot 1 when it is full and slot 0 is empty or strictly worse ([`FracCmp`], exact),
+//! `v`, `n`, `d`: slot 1 when it is full and slot 0 is empty or strictly worse ([`QuotCmp`], exact),
 //! slot 0 otherwise. An empty slot is `-inf` for a max and `+inf` for a min.
 
-use crate::plane::quot_cmp::FracCmp;
+use crate::plane::quot_cmp::QuotCmp;
 use rust_hdl::prelude::*;
 
 /// The better of two optional fractions; see the module documentation.
 #[derive(LogicBlock)]
-pub struct FracPick<const AB: usize, const MB: usize> {
+pub struct QuotPick<const AB: usize, const MB: usize> {
     pub v0: Signal<In, Bit>,
     pub n0: Signal<In, Bits<AB>>,
     pub d0: Signal<In, Bits<MB>>,
@@ -26,10 +26,10 @@ pub struct FracPick<const AB: usize, const MB: usize> {
     pub d: Signal<Out, Bits<MB>>,
     /// 1: the smaller wins; 0: the larger.
     want_min: Constant<Bit>,
-    cmp: FracCmp<AB, MB>,
+    cmp: QuotCmp<AB, MB>,
 }
 
-impl<const AB: usize, const MB: usize> FracPick<AB, MB> {
+impl<const AB: usize, const MB: usize> QuotPick<AB, MB> {
     /// A min (`want_min`) or max node.
     pub fn new(want_min: bool) -> Self {
         Self {
@@ -48,7 +48,7 @@ impl<const AB: usize, const MB: usize> FracPick<AB, MB> {
     }
 }
 
-impl<const AB: usize, const MB: usize> Logic for FracPick<AB, MB> {
+impl<const AB: usize, const MB: usize> Logic for QuotPick<AB, MB> {
     #[hdl_gen]
     fn update(&mut self) {
         // `lt`: slot 1 is strictly better (min: n1/d1 < n0/d0; max: n0/d0 < n1/d1).

@@ -1,5 +1,5 @@
-//! `FracTree`: the largest (or smallest) of eight optional fractions, a pipelined tree of
-//! cross-multiplied comparisons ([`FracCmp`]), three clocks. The entry (max) and exit (min) trees of the
+//! `QuotTree`: the largest (or smallest) of eight optional fractions, a pipelined tree of
+//! cross-multiplied comparisons ([`QuotCmp`]), three clocks. The entry (max) and exit (min) trees of the
 //! fraction option of the cull-plane tester ([`crate::plane::quot`]).
 //!
 //! # Inputs
@@ -9,39 +9,39 @@
 //!
 //! # Outputs (three clocks after the inputs)
 //! `v_out`, `n_out`, `d_out`: the winning slot, exactly (no rounding anywhere). Ties go to the lower slot;
-//! [`frac_tree`](golden::plane::quot::frac_tree) is the native model, with the same tie-breaking.
+//! [`quot_order_tree`](golden::plane::quot::quot_order_tree) is the native model, with the same tie-breaking.
 //!
 //! # Structure
-//! Seven [`FracPick`] nodes, each followed by a register (`_q`): nodes 0-3 compare slot pairs, 4-5 the
+//! Seven [`QuotPick`] nodes, each followed by a register (`_q`): nodes 0-3 compare slot pairs, 4-5 the
 //! registers of 0-3, 6 those of 4-5. Every comparator reads registers or inputs only (a comparator fed
 //! through logic that reads other children in the same `always` block is a combinational cycle at block
 //! granularity for Verilator, UNOPTFLAT). Slots that a parent ties to constants (unused planes) take
 //! their comparators with them in synthesis.
 
-use crate::plane::quot_pick::FracPick;
-pub use golden::plane::quot::FRAC_TREE_SLOTS;
+use crate::plane::quot_pick::QuotPick;
+pub use golden::plane::quot::QUOT_TREE_SLOTS;
 use rust_hdl::prelude::*;
 
 /// Clocks from the slots in to the result out.
-pub const FRAC_TREE_LATENCY: usize = 3;
+pub const QUOT_TREE_LATENCY: usize = 3;
 
 /// Pipelined max or min of eight fractions; see the module documentation.
 #[derive(LogicBlock)]
-pub struct FracTree<const AB: usize, const MB: usize> {
+pub struct QuotTree<const AB: usize, const MB: usize> {
     pub clock: Signal<In, Clock>,
-    pub v: [Signal<In, Bit>; FRAC_TREE_SLOTS],
-    pub n: [Signal<In, Bits<AB>>; FRAC_TREE_SLOTS],
-    pub d: [Signal<In, Bits<MB>>; FRAC_TREE_SLOTS],
+    pub v: [Signal<In, Bit>; QUOT_TREE_SLOTS],
+    pub n: [Signal<In, Bits<AB>>; QUOT_TREE_SLOTS],
+    pub d: [Signal<In, Bits<MB>>; QUOT_TREE_SLOTS],
     pub v_out: Signal<Out, Bit>,
     pub n_out: Signal<Out, Bits<AB>>,
     pub d_out: Signal<Out, Bits<MB>>,
-    pick: [FracPick<AB, MB>; 7],
+    pick: [QuotPick<AB, MB>; 7],
     v_q: [DFF<Bit>; 7],
     n_q: [DFF<Bits<AB>>; 7],
     d_q: [DFF<Bits<MB>>; 7],
 }
 
-impl<const AB: usize, const MB: usize> FracTree<AB, MB> {
+impl<const AB: usize, const MB: usize> QuotTree<AB, MB> {
     /// A min tree (`want_min`) or a max tree.
     pub fn new(want_min: bool) -> Self {
         Self {
@@ -52,7 +52,7 @@ impl<const AB: usize, const MB: usize> FracTree<AB, MB> {
             v_out: Default::default(),
             n_out: Default::default(),
             d_out: Default::default(),
-            pick: std::array::from_fn(|_| FracPick::new(want_min)),
+            pick: std::array::from_fn(|_| QuotPick::new(want_min)),
             v_q: Default::default(),
             n_q: Default::default(),
             d_q: Default::default(),
@@ -60,7 +60,7 @@ impl<const AB: usize, const MB: usize> FracTree<AB, MB> {
     }
 }
 
-impl<const AB: usize, const MB: usize> Logic for FracTree<AB, MB> {
+impl<const AB: usize, const MB: usize> Logic for QuotTree<AB, MB> {
     #[hdl_gen]
     fn update(&mut self) {
         for j in 0..7 {

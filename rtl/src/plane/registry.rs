@@ -3,7 +3,7 @@
 
 use super::fix::{PlaneFix, PLANE_FIX_DEEP};
 use super::float::PlaneFloat;
-use super::quot::PlaneFrac;
+use super::quot::PlaneQuot;
 use golden::format::float::FloatFormat;
 
 /// The chained slab + cull-plane tester over b12 with the default plane format (`N = 8`, `FD = 11`,
@@ -44,13 +44,13 @@ pub type PlaneFloatE8M23K2 = PlaneFloat<8, 23, 32, 2>;
 /// The chained float node tester (slab + 4 cull planes) in binary32.
 pub type PlaneFloatE8M23K4 = PlaneFloat<8, 23, 32, 4>;
 
-/// The fraction option of the chained tester ([`PlaneFrac`]) over b12 (`N = 8`, `FD = 11`)
+/// The fraction option of the chained tester ([`PlaneQuot`]) over b12 (`N = 8`, `FD = 11`)
 /// with `K` planes.
-pub type PlaneFracB12<const K: usize> = PlaneFrac<12, 13, 16, 20, 8, 14, 24, 25, 23, 22, 47, K>;
+pub type PlaneQuotB12<const K: usize> = PlaneQuot<12, 13, 16, 20, 8, 14, 24, 25, 23, 22, 47, K>;
 /// The same over b8 (`FD = 8`).
-pub type PlaneFracB8<const K: usize> = PlaneFrac<8, 9, 12, 14, 8, 11, 20, 21, 20, 19, 40, K>;
+pub type PlaneQuotB8<const K: usize> = PlaneQuot<8, 9, 12, 14, 8, 11, 20, 21, 20, 19, 40, K>;
 /// The same over b16 (`FD = 14`).
-pub type PlaneFracB16<const K: usize> = PlaneFrac<16, 17, 20, 24, 8, 17, 28, 29, 26, 25, 54, K>;
+pub type PlaneQuotB16<const K: usize> = PlaneQuot<16, 17, 20, 24, 8, 17, 28, 29, 26, 25, 54, K>;
 
 /// The (float format, planes) pairs with an instantiated `PlaneFloat` (type aliases in `rtl/src/plane/registry.rs`).
 pub const PLANE_FLOAT_CONFIGS: [(FloatFormat, usize); 9] = [

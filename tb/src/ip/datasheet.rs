@@ -232,7 +232,7 @@ pub fn family_doc(e: &Exported) -> FamilyDoc {
         Family::SlabFix { fmt, .. } => slab_fix_doc(&fmt),
         Family::SlabFloat { f, .. } => slab_float_doc(&f),
         Family::PlaneFix { cf, k, .. } => fd::plane_fix_doc(&cf, k, false),
-        Family::PlaneFrac { cf, k } => fd::plane_fix_doc(&cf, k, true),
+        Family::PlaneQuot { cf, k } => fd::plane_fix_doc(&cf, k, true),
         Family::PlaneFloat { cf, k } => fd::plane_float_doc(&cf, k),
         Family::BundleFix { bf, .. } => fd::bundle_fix_doc(&bf),
         Family::BundleFloat { f, .. } => fd::bundle_float_doc(&f),

@@ -137,7 +137,7 @@ at or below `-2^{t1}`, and `2^{t1} - 2` for a code at or above `2^{t1} - 1`. \
 
 /// What the datasheet says of the fixed chained slab + cull-plane tester over `cf` with `k` planes:
 /// the reciprocal-table option (`PlaneFix`, module `plane_fix_*`) when `frac` is false, the exact
-/// fraction option (`PlaneFrac`, module `plane_fix_frac_*`) when it is true.
+/// fraction option (`PlaneQuot`, module `plane_fix_frac_*`) when it is true.
 pub fn plane_fix_doc(cf: &CullFixFormat, k: usize, frac: bool) -> FamilyDoc {
     let fmt = &cf.base;
     let (g, t, ft) = (fmt.g, fmt.t, fmt.ft);
@@ -1223,7 +1223,7 @@ mod tests {
     fn doc_of(e: &Exported) -> Option<FamilyDoc> {
         Some(match e.family {
             Family::PlaneFix { cf, k, .. } => plane_fix_doc(&cf, k, false),
-            Family::PlaneFrac { cf, k } => plane_fix_doc(&cf, k, true),
+            Family::PlaneQuot { cf, k } => plane_fix_doc(&cf, k, true),
             Family::PlaneFloat { cf, k } => plane_float_doc(&cf, k),
             Family::BundleFix { bf, .. } => bundle_fix_doc(&bf),
             Family::BundleFloat { f, .. } => bundle_float_doc(&f),
@@ -1336,7 +1336,7 @@ mod tests {
                     .map(|(_, v, _)| v.parse::<usize>().unwrap())
             };
             match e.family {
-                Family::PlaneFix { cf, k, .. } | Family::PlaneFrac { cf, k } => {
+                Family::PlaneFix { cf, k, .. } | Family::PlaneQuot { cf, k } => {
                     assert_eq!(width("ray_d_lo_0"), param("D"), "{}", e.module);
                     assert_eq!(width("plane_w_0"), param("W"), "{}", e.module);
                     assert_eq!(width("plane_nx_0"), param("N"), "{}", e.module);
@@ -1346,7 +1346,7 @@ mod tests {
                         width(&format!("plane_w_{}", k - 1)).is_some()
                             && width(&format!("plane_w_{k}")).is_none()
                     );
-                    let out = if matches!(e.family, Family::PlaneFrac { .. }) {
+                    let out = if matches!(e.family, Family::PlaneQuot { .. }) {
                         param("FB")
                     } else {
                         param("T")

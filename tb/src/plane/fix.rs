@@ -9,7 +9,7 @@ use golden::exact::ExactHit;
 use golden::format::fixed::{FixFormat, GridMap};
 use golden::plane::clip::{clip_exact, ExactPlane};
 use golden::plane::fix::{
-    self as plane_fix, cull_fix_fractions, node_fix, CullFixFormat, FixNode, FixPlane, NodeFixRay,
+    self as plane_fix, cull_fix_quotients, node_fix, CullFixFormat, FixNode, FixPlane, NodeFixRay,
     PlaneFixOut,
 };
 use golden::plane::gen::{CullCase, CullGen};
@@ -304,7 +304,7 @@ fn campaign_loop(
 }
 
 /// Runs `n` cases through the fixed model of `ctx` against the exact clip and the exact triangle test,
-/// counting also what the exact-fraction variant ([`cull_fix_fractions`]) would cull.
+/// counting also what the exact-fraction variant ([`cull_fix_quotients`]) would cull.
 pub fn cull_fix_campaign(
     ctx: CullFixCtx,
     seed: u64,
@@ -318,7 +318,7 @@ pub fn cull_fix_campaign(
         let (r, node, exact_planes) = fix_case(&ctx.cf, &map, c).ok()?;
         let out = ctx.model(&r, &node);
         let slab = golden::slab::fix::slab_fix(&f, &r.ray, &node.b);
-        let (frac_hit, _, _) = cull_fix_fractions(
+        let (quot_hit, _, _) = cull_fix_quotients(
             &ctx.cf,
             &r.ray,
             &r.dir,
@@ -333,7 +333,7 @@ pub fn cull_fix_campaign(
                 r.ray.t_world(&f, out.t_entry),
                 r.ray.t_world(&f, out.t_exit),
             )),
-            fraction_hit: Some(frac_hit),
+            fraction_hit: Some(quot_hit),
             detail: format!("node {node:?}\n  out {out:?}"),
         })
     };

@@ -1,15 +1,15 @@
-//! The fraction option of the fixed cull-plane tester (`rtl::plane::quot::PlaneFrac`): the rust-hdl
-//! simulation bit for bit against its model `node_frac` (latency, tag order, bubbles), every result's
-//! values equal to `golden::plane::fix::cull_fix_fractions` (the option's model of record), and the exported
+//! The fraction option of the fixed cull-plane tester (`rtl::plane::quot::PlaneQuot`): the rust-hdl
+//! simulation bit for bit against its model `node_quot` (latency, tag order, bubbles), every result's
+//! values equal to `golden::plane::fix::cull_fix_quotients` (the option's model of record), and the exported
 //! Verilog (lint, Icarus, Verilator cross-simulation against rust-hdl and the model). Vectors: cases from
 //! `golden::plane::gen` (uniform and adversarial) with one in eight raw.
 
 use golden::exact::{ExactHit, Ext};
 use golden::format::fixed::FixFormat;
-use golden::plane::fix::{cull_fix_fractions, CullFixFormat, FixNode, NodeFixRay};
-use golden::plane::quot::{frac_value, frac_word, node_frac, Frac, PlaneFracOut};
+use golden::plane::fix::{cull_fix_quotients, CullFixFormat, FixNode, NodeFixRay};
+use golden::plane::quot::{node_quot, quot_value, quot_word, PlaneQuotOut, Quot};
 use golden::slab::fix::slab_fix;
-use rtl::plane::quot::PlaneFracIo;
+use rtl::plane::quot::PlaneQuotIo;
 use rtl::slab::fix::sext;
 use std::cell::Cell;
 use tb::dut::run_checked;
@@ -18,13 +18,13 @@ use tb::rtl_sim::TesterSim;
 use tb::slab::ports::{xsim, TesterCtx};
 
 /// The fraction option's testbench context: the plane format and plane count of [`CullFixCtx`], the
-/// model [`node_frac`], results as the packed fraction words of the ports.
+/// model [`node_quot`], results as the packed fraction words of the ports.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
-struct FracCtx(CullFixCtx);
+struct QuotCtx(CullFixCtx);
 
-impl FracCtx {
+impl QuotCtx {
     fn new(fmt: FixFormat, k: usize) -> Self {
-        FracCtx(CullFixCtx {
+        QuotCtx(CullFixCtx {
             cf: CullFixFormat::over(fmt),
             k,
         })
@@ -33,8 +33,8 @@ impl FracCtx {
         &self.0.cf
     }
     /// The interval of a result in exact world units.
-    fn interval(&self, r: &NodeFixRay, o: &PlaneFracOut) -> Option<(Ext, Ext)> {
-        let w = |f: &Frac| match frac_value(self.cf(), f) {
+    fn interval(&self, r: &NodeFixRay, o: &PlaneQuotOut) -> Option<(Ext, Ext)> {
+        let w = |f: &Quot| match quot_value(self.cf(), f) {
             Ext::Fin(v) => Ext::Fin(v * golden::exact::dyadic(1, r.ray.t_exp)),
             inf => inf,
         };
@@ -45,83 +45,83 @@ impl FracCtx {
     }
 }
 
-/// Does `cull_fix_fractions` have a value for this node? Not for an inverted direction interval (only
+/// Does `cull_fix_quotients` have a value for this node? Not for an inverted direction interval (only
 /// raw vectors have one): it can make a chosen `den` zero.
 fn fractions_defined(r: &NodeFixRay) -> bool {
     (0..3).all(|a| r.dir.lo[a] <= r.dir.hi[a])
 }
 
-/// `node_frac` against `cull_fix_fractions`: the same decision and the same interval, value for value.
+/// `node_quot` against `cull_fix_quotients`: the same decision and the same interval, value for value.
 fn agrees_with_fractions(
-    c: &FracCtx,
+    c: &QuotCtx,
     r: &NodeFixRay,
     n: &FixNode,
-    o: &PlaneFracOut,
+    o: &PlaneQuotOut,
 ) -> Result<(), String> {
     let cf = c.cf();
     let slab = slab_fix(&cf.base, &r.ray, &n.b);
     let (hit, entry, exit) =
-        cull_fix_fractions(cf, &r.ray, &r.dir, &n.b, &n.planes[..c.0.k], &slab);
-    let got = (o.hit, frac_value(cf, &o.t_entry), frac_value(cf, &o.t_exit));
+        cull_fix_quotients(cf, &r.ray, &r.dir, &n.b, &n.planes[..c.0.k], &slab);
+    let got = (o.hit, quot_value(cf, &o.t_entry), quot_value(cf, &o.t_exit));
     if got == (hit, entry.clone(), exit.clone()) {
         Ok(())
     } else {
         Err(format!(
-            "{}: node_frac {o:?} = {got:?}, cull_fix_fractions ({hit}, {entry:?}, {exit:?})\n  ray {r:?}\n  node {n:?}",
+            "{}: node_quot {o:?} = {got:?}, cull_fix_quotients ({hit}, {entry:?}, {exit:?})\n  ray {r:?}\n  node {n:?}",
             c.name()
         ))
     }
 }
 
-impl TesterCtx for FracCtx {
+impl TesterCtx for QuotCtx {
     type Ray = NodeFixRay;
     type Box = FixNode;
-    type Out = PlaneFracOut;
+    type Out = PlaneQuotOut;
     fn name(&self) -> String {
-        rtl::names::plane_frac_module(self.cf(), self.0.k)
+        rtl::names::plane_quot_module(self.cf(), self.0.k)
     }
     fn port_value(&self, base: &str, idx: usize, r: &NodeFixRay, n: &FixNode) -> Option<u64> {
         self.0.port_value(base, idx, r, n)
     }
-    /// `node_frac`, checked against `cull_fix_fractions` wherever that has a value.
-    fn model(&self, r: &NodeFixRay, n: &FixNode) -> PlaneFracOut {
-        let o = node_frac(self.cf(), self.0.k, r, n);
+    /// `node_quot`, checked against `cull_fix_quotients` wherever that has a value.
+    fn model(&self, r: &NodeFixRay, n: &FixNode) -> PlaneQuotOut {
+        let o = node_quot(self.cf(), self.0.k, r, n);
         if fractions_defined(r) {
             agrees_with_fractions(self, r, n, &o).unwrap_or_else(|e| panic!("{e}"));
         }
         o
     }
-    fn out_fields(&self, o: &PlaneFracOut) -> (bool, u64, u64) {
+    fn out_fields(&self, o: &PlaneQuotOut) -> (bool, u64, u64) {
         (
             o.hit,
-            frac_word(self.cf(), &o.t_entry),
-            frac_word(self.cf(), &o.t_exit),
+            quot_word(self.cf(), &o.t_entry),
+            quot_word(self.cf(), &o.t_exit),
         )
     }
-    fn out_from_fields(&self, hit: bool, t_entry: u64, t_exit: u64) -> PlaneFracOut {
+    fn out_from_fields(&self, hit: bool, t_entry: u64, t_exit: u64) -> PlaneQuotOut {
         let (sb, t) = (self.cf().s_bits() as usize, self.cf().base.t as usize);
         let unpack = |w: u64| {
             let den = w >> sb;
             let bits = if den == 0 { t } else { sb };
-            Frac {
+            Quot {
                 num: sext(w & ((1 << bits) - 1), bits),
                 den,
             }
         };
-        PlaneFracOut {
+        PlaneQuotOut {
             hit,
             t_entry: unpack(t_entry),
             t_exit: unpack(t_exit),
         }
     }
-    fn world(&self, r: &NodeFixRay, o: &PlaneFracOut) -> (bool, f64, f64) {
-        let w = |f: &Frac| frac_value(self.cf(), f).to_f64() * 2f64.powi(r.ray.t_exp);
+    fn world(&self, r: &NodeFixRay, o: &PlaneQuotOut) -> (bool, f64, f64) {
+        let w = |f: &Quot| quot_value(self.cf(), f).to_f64() * 2f64.powi(r.ray.t_exp);
         (o.hit, w(&o.t_entry), w(&o.t_exit))
     }
     fn judge(
         &self,
         r: &NodeFixRay,
-        o: &PlaneFracOut,
+        o: &PlaneQuotOut,
         exact: &ExactHit,
     ) -> golden::slab::check::Verdict {
         golden::slab::check::judge(exact, o.hit, || self.interval(r, o))
@@ -129,11 +129,11 @@ impl TesterCtx for FracCtx {
 }
 
 /// Streams `n` vectors through the rust-hdl simulation of `S`, every result checked bit for bit against
-/// `node_frac` and, through [`FracCtx::model`], against `cull_fix_fractions`.
-fn rtl_matches_model_and_fractions<S: PlaneFracIo>(fmt: FixFormat, seed: u64) {
+/// `node_quot` and, through [`QuotCtx::model`], against `cull_fix_quotients`.
+fn rtl_matches_model_and_fractions<S: PlaneQuotIo>(fmt: FixFormat, seed: u64) {
     const N: u64 = 12_000;
-    let c = FracCtx::new(fmt, S::PLANES);
-    // Vectors checked against cull_fix_fractions, nodes the planes cull after the slab test kept them,
+    let c = QuotCtx::new(fmt, S::PLANES);
+    // Vectors checked against cull_fix_quotients, nodes the planes cull after the slab test kept them,
     // results with a plane's entry, with a plane's exit.
     let counts: [Cell<u64>; 4] = Default::default();
     let mut dut = TesterSim::wrap(S::for_format(c.cf()));
@@ -155,40 +155,40 @@ fn rtl_matches_model_and_fractions<S: PlaneFracIo>(fmt: FixFormat, seed: u64) {
     assert_eq!(done, N as usize);
     let [exact, culled, entries, exits] = counts.map(|x| x.get());
     eprintln!(
-        "{}: {N} vectors, {exact} of them against cull_fix_fractions; {culled} plane culls, {entries} \
+        "{}: {N} vectors, {exact} of them against cull_fix_quotients; {culled} plane culls, {entries} \
          plane entries, {exits} plane exits",
         c.name()
     );
     assert!(
         exact >= 10_000,
-        "only {exact} checked against cull_fix_fractions"
+        "only {exact} checked against cull_fix_quotients"
     );
     assert!(culled > 0 && entries > 0 && exits > 0, "degenerate vectors");
 }
 
 #[test]
 fn rtl_matches_model_and_fractions_b12_k1() {
-    rtl_matches_model_and_fractions::<rtl::PlaneFracB12<1>>(FixFormat::b12(), 21);
+    rtl_matches_model_and_fractions::<rtl::PlaneQuotB12<1>>(FixFormat::b12(), 21);
 }
 
 #[test]
 fn rtl_matches_model_and_fractions_b12_k4() {
-    rtl_matches_model_and_fractions::<rtl::PlaneFracB12<4>>(FixFormat::b12(), 22);
+    rtl_matches_model_and_fractions::<rtl::PlaneQuotB12<4>>(FixFormat::b12(), 22);
 }
 
-/// The model `node_frac` against `cull_fix_fractions` on more vectors than the RTL runs: every preset,
+/// The model `node_quot` against `cull_fix_quotients` on more vectors than the RTL runs: every preset,
 /// one to eight planes.
 #[test]
 fn model_equals_cull_fix_fractions_every_preset() {
     for fmt in FixFormat::presets() {
         for k in [1, 4, 8] {
-            let c = FracCtx::new(fmt, k);
+            let c = QuotCtx::new(fmt, k);
             let checked = c
                 .vectors(30 + k as u64, 40_000)
                 .flatten()
                 .filter(|(r, _)| fractions_defined(r))
                 .map(|(r, n)| {
-                    let o = node_frac(c.cf(), k, &r, &n);
+                    let o = node_quot(c.cf(), k, &r, &n);
                     agrees_with_fractions(&c, &r, &n, &o).unwrap_or_else(|e| panic!("{e}"))
                 })
                 .count();
@@ -202,7 +202,7 @@ fn model_equals_cull_fix_fractions_every_preset() {
 /// culled (uniform and adversarial cases, b12 with four planes). It culls at least what the table culls.
 #[test]
 fn fraction_option_is_conservative() {
-    let c = FracCtx::new(FixFormat::b12(), 4);
+    let c = QuotCtx::new(FixFormat::b12(), 4);
     let map = tb::plane::fix::cull_map(c.cf().base);
     let mut gen = golden::plane::gen::CullGen::new(40, 0.5, 4, tb::plane::fix::CULL_R);
     let (mut n, mut culled, mut table_culled) = (0, 0, 0);
@@ -236,10 +236,10 @@ fn fraction_option_is_conservative() {
 /// interval is not the fractions' (its bounds are rounded outward).
 #[test]
 fn a_wrong_model_is_caught() {
-    let c = FracCtx::new(FixFormat::b12(), 2);
-    let mut dut = TesterSim::wrap(rtl::PlaneFracB12::<2>::new(c.cf()));
-    let wrong = FracCtx(CullFixCtx { k: 0, ..c.0 });
-    assert!(run_checked(&mut dut, c.vectors(5, 2_000), |v| node_frac(
+    let c = QuotCtx::new(FixFormat::b12(), 2);
+    let mut dut = TesterSim::wrap(rtl::PlaneQuotB12::<2>::new(c.cf()));
+    let wrong = QuotCtx(CullFixCtx { k: 0, ..c.0 });
+    assert!(run_checked(&mut dut, c.vectors(5, 2_000), |v| node_quot(
         wrong.cf(),
         0,
         &v.0,
@@ -248,18 +248,18 @@ fn a_wrong_model_is_caught() {
     .is_err());
     let table_differs = c.vectors(6, 2_000).flatten().any(|(r, n)| {
         let t = c.0.model(&r, &n);
-        let as_frac = |code| Frac { num: code, den: 0 };
-        let table = PlaneFracOut {
+        let as_quot = |code| Quot { num: code, den: 0 };
+        let table = PlaneQuotOut {
             hit: t.hit,
-            t_entry: as_frac(t.t_entry),
-            t_exit: as_frac(t.t_exit),
+            t_entry: as_quot(t.t_entry),
+            t_exit: as_quot(t.t_exit),
         };
         fractions_defined(&r) && agrees_with_fractions(&c, &r, &n, &table).is_err()
     });
     assert!(table_differs);
 }
 
-fn export<S: PlaneFracIo>(c: &FracCtx) -> (String, std::path::PathBuf) {
+fn export<S: PlaneQuotIo>(c: &QuotCtx) -> (String, std::path::PathBuf) {
     let name = c.name();
     let v = rtl::verilog::verilog_named(&mut S::for_format(c.cf()), &name);
     let path = tb::verilog_tools::write(&v, &name);
@@ -268,19 +268,19 @@ fn export<S: PlaneFracIo>(c: &FracCtx) -> (String, std::path::PathBuf) {
 
 #[test]
 fn exported_verilog_is_lint_clean_and_accepted_by_icarus() {
-    let c = FracCtx::new(FixFormat::b12(), 4);
-    let (_, path) = export::<rtl::PlaneFracB12<4>>(&c);
+    let c = QuotCtx::new(FixFormat::b12(), 4);
+    let (_, path) = export::<rtl::PlaneQuotB12<4>>(&c);
     tb::verilog_tools::lint(&path).unwrap_or_else(|e| panic!("{e}"));
     tb::verilog_tools::icarus(&path).unwrap_or_else(|e| panic!("{e}"));
-    let c = FracCtx::new(FixFormat::b16(), 1);
-    let (_, path) = export::<rtl::PlaneFracB16<1>>(&c);
+    let c = QuotCtx::new(FixFormat::b16(), 1);
+    let (_, path) = export::<rtl::PlaneQuotB16<1>>(&c);
     tb::verilog_tools::lint(&path).unwrap_or_else(|e| panic!("{e}"));
 }
 
 /// Verilator on the exported Verilog: every cycle against the rust-hdl simulation for the first
-/// `lockstep` cycles, every result against the model (and so against `cull_fix_fractions`).
-fn cross_simulate<S: PlaneFracIo>(fmt: FixFormat, n: u64, lockstep: u64, seed: u64) {
-    let c = FracCtx::new(fmt, S::PLANES);
+/// `lockstep` cycles, every result against the model (and so against `cull_fix_quotients`).
+fn cross_simulate<S: PlaneQuotIo>(fmt: FixFormat, n: u64, lockstep: u64, seed: u64) {
+    let c = QuotCtx::new(fmt, S::PLANES);
     let (v, _) = export::<S>(&c);
     let h = tb::verilator::build(&v, &c.name(), &tb::out_dir().join("verilator"))
         .unwrap_or_else(|e| panic!("{e}"));
@@ -302,28 +302,28 @@ fn cross_simulate<S: PlaneFracIo>(fmt: FixFormat, n: u64, lockstep: u64, seed: u
 
 #[test]
 fn verilator_matches_rtl_and_model_b12_k1() {
-    cross_simulate::<rtl::PlaneFracB12<1>>(FixFormat::b12(), 100_000, 5_000, 23);
+    cross_simulate::<rtl::PlaneQuotB12<1>>(FixFormat::b12(), 100_000, 5_000, 23);
 }
 
 #[test]
 fn verilator_matches_rtl_and_model_b12_k4() {
-    cross_simulate::<rtl::PlaneFracB12<4>>(FixFormat::b12(), 100_000, 5_000, 24);
+    cross_simulate::<rtl::PlaneQuotB12<4>>(FixFormat::b12(), 100_000, 5_000, 24);
 }
 
 #[test]
 fn verilator_matches_rtl_and_model_b16_k4() {
-    cross_simulate::<rtl::PlaneFracB16<4>>(FixFormat::b16(), 50_000, 2_000, 25);
+    cross_simulate::<rtl::PlaneQuotB16<4>>(FixFormat::b16(), 50_000, 2_000, 25);
 }
 
 /// Synchronous reset of the fraction option (`tb::reset`), as for the table option.
 #[test]
 fn reset_clears_every_valid_bit_b12_k1() {
-    let c = FracCtx::new(FixFormat::b12(), 1);
-    let (v, _) = export::<rtl::PlaneFracB12<1>>(&c);
+    let c = QuotCtx::new(FixFormat::b12(), 1);
+    let (v, _) = export::<rtl::PlaneQuotB12<1>>(&c);
     let tests: Vec<_> = c.vectors(33, 400).flatten().collect();
     let s = tb::reset::check_block(
         c,
-        || rtl::PlaneFracB12::<1>::for_format(c.cf()),
+        || rtl::PlaneQuotB12::<1>::for_format(c.cf()),
         &tests,
         &c.name(),
         &v,
