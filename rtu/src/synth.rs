@@ -43,40 +43,33 @@ pub struct SynthRow {
 }
 
 impl SynthRow {
-    /// The row of `report.csv`.
-    pub fn csv(&self) -> String {
-        format!(
-            "{},{},{},{},{},{},{},{},{},{},{}",
-            self.module,
-            self.latency,
-            self.generic_cells,
-            self.ice40_lut4,
-            self.ice40_carry,
-            self.ice40_ff,
-            self.ice40_depth,
-            self.xilinx_lut,
-            self.xilinx_dsp,
-            self.xilinx_ff,
-            self.ice40_stage_depth
-        )
+    /// The row's values in the order of [`CSV_HEADER`].
+    fn values(&self) -> [String; 11] {
+        [
+            self.module.clone(),
+            self.latency.to_string(),
+            self.generic_cells.to_string(),
+            self.ice40_lut4.to_string(),
+            self.ice40_carry.to_string(),
+            self.ice40_ff.to_string(),
+            self.ice40_depth.to_string(),
+            self.xilinx_lut.to_string(),
+            self.xilinx_dsp.to_string(),
+            self.xilinx_ff.to_string(),
+            self.ice40_stage_depth.to_string(),
+        ]
     }
 
-    /// The row of `report.md` (the stage depth beside the depth).
+    /// The row of `report.csv`.
+    pub fn csv(&self) -> String {
+        self.values().join(",")
+    }
+
+    /// The row of `report.md`: the columns of `report.csv` with the stage depth beside the depth.
     pub fn markdown(&self) -> String {
-        format!(
-            "| {} | {} | {} | {} | {} | {} | {} | {} | {} | {} | {} |",
-            self.module,
-            self.latency,
-            self.generic_cells,
-            self.ice40_lut4,
-            self.ice40_carry,
-            self.ice40_ff,
-            self.ice40_depth,
-            self.ice40_stage_depth,
-            self.xilinx_lut,
-            self.xilinx_dsp,
-            self.xilinx_ff
-        )
+        let v = self.values();
+        let cols = [0, 1, 2, 3, 4, 5, 6, 10, 7, 8, 9].map(|i| v[i].as_str());
+        format!("| {} |", cols.join(" | "))
     }
 
     /// What the sweep's area table holds of the row.
