@@ -87,7 +87,7 @@ pub fn plane_fix_module_of<S: PlaneFixIo>(cf: &CullFixFormat) -> String {
     plane_fix_module_cuts(cf, S::PLANES, S::SLAB_CUTS, S::CUTS)
 }
 
-/// Module name of the fraction option, e.g. `plane_fix_frac_g12_i16f11_t20f6_n8_fd11_k4` (no table bits).
+/// Module name of the quotient option (`crate::plane::quot::PlaneQuot`), e.g. `plane_fix_frac_g12_i16f11_t20f6_n8_fd11_k4` (no table bits).
 pub fn plane_quot_module(cf: &CullFixFormat, k: usize) -> String {
     format!(
         "plane_fix_frac_{}_n{}_fd{}_k{k}",
@@ -151,11 +151,6 @@ pub fn bundle_split_module(bf: &BundleFixFormat) -> String {
 /// `bundle_stream_g12_i16f11_t20f6_d10_n16x4` (the default pair) or `..._d10_p5_n16x4`.
 pub fn bundle_stream_module_cuts(bf: &BundleFixFormat, cuts: usize) -> String {
     bundle_stream_name(&bf.name(), &BUNDLE_FIX_DEPTHS, cuts)
-}
-
-/// Module name of the streaming processor over the default pair.
-pub fn bundle_stream_module(bf: &BundleFixFormat) -> String {
-    bundle_stream_module_cuts(bf, BUNDLE_TEST_CUTS)
 }
 
 /// Module name of the float streaming processor for a format and the pair's cut points, e.g.

@@ -3,8 +3,6 @@
 //! both datapaths. Vectors are streamed (memory stays flat); progress is shown; results go to
 //! `<out>/campaign.csv`.
 
-use golden::format::fixed::FixFormat;
-use golden::format::float::FloatFormat;
 use golden::slab::gen::GenKind;
 use indicatif::{ProgressBar, ProgressStyle};
 use std::fmt::Write as _;
@@ -51,14 +49,6 @@ fn bar(n: u64, msg: String) -> ProgressBar {
     );
     pb.set_message(msg);
     pb
-}
-
-fn list<T>(s: &str, parse: impl Fn(&str) -> Result<T, golden::Error>) -> Result<Vec<T>, String> {
-    s.split(',')
-        .map(str::trim)
-        .filter(|x| !x.is_empty())
-        .map(|x| parse(x).map_err(|e| e.to_string()))
-        .collect()
 }
 
 /// The campaign's log: CSV rows and failures.
@@ -122,8 +112,8 @@ impl Log {
 }
 
 pub fn run(a: &Args, out: &Path) -> Result<(), String> {
-    let fixed: Vec<FixFormat> = list(&a.formats, FixFormat::parse)?;
-    let floats: Vec<FloatFormat> = list(&a.float_formats, FloatFormat::parse)?;
+    let fixed = crate::opts::fix_formats(&a.formats)?;
+    let floats = crate::opts::float_formats(&a.float_formats)?;
     let mut log = Log {
         csv: String::from("check,format,generator,vectors,true_hits,false_hits,false_hit_rate,violations,seconds,vectors_per_s\n"),
         failed: vec![],

@@ -52,7 +52,7 @@ pub type PlaneQuotB8<const K: usize> = PlaneQuot<8, 9, 12, 14, 8, 11, 20, 21, 20
 /// The same over b16 (`FD = 14`).
 pub type PlaneQuotB16<const K: usize> = PlaneQuot<16, 17, 20, 24, 8, 17, 28, 29, 26, 25, 54, K>;
 
-/// The (float format, planes) pairs with an instantiated `PlaneFloat` (type aliases in `rtl/src/plane/registry.rs`).
+/// The (float format, planes) pairs with an instantiated `PlaneFloat` (the aliases above).
 pub const PLANE_FLOAT_CONFIGS: [(FloatFormat, usize); 9] = [
     (FloatFormat::FP16, 1),
     (FloatFormat::FP16, 2),
