@@ -9,14 +9,20 @@
 //! | [`bundle`] | the AllHit / AnyHit edge testers, the pairs and the results processor | `golden::bundle` |
 //!
 //! Shared: [`io`] (the testbench interface of the slab-shaped testers), [`cut`] (pipeline cut points and
-//! waits), [`delay`], [`verilog`] (a block's Verilog text with plain names), [`names`] (every exported
+//! waits), [`delay`], [`dispatch`] (the configuration tables' shared machinery), [`verilog`] (a block's Verilog text with plain names), [`names`] (every exported
 //! module's name, made in one place), [`export`] (Verilog export of every configuration and the catalogue
-//! of exported modules). Blocks import neither [`names`] nor [`export`]; those two read the blocks. Which configurations exist is said once per family, in its `registry`
-//! (and the slab tester's format [`slab::ladder`]); their aliases and format lists are re-exported here.
+//! of exported modules). Blocks import neither [`names`] nor [`export`]; those two read the blocks.
+//!
+//! Which configurations exist is said once per datapath of a family, by one table macro in the family's
+//! `registry` ([`slab::registry`], [`plane::registry`], [`bundle::registry`]; the slab tester's format
+//! ladder in [`slab::ladder`]): a row per format gives its type aliases (one per depth), and from the same
+//! rows come the format lists, the per-format dispatch macros (`with_slab_fix!`, `with_plane_float!`, ...)
+//! and the export catalogue's rows ([`export::catalog`]). Aliases, lists and macros are re-exported here.
 
 pub mod bundle;
 pub mod cut;
 pub mod delay;
+pub mod dispatch;
 pub mod export;
 pub mod fp;
 pub mod io;

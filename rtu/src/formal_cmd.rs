@@ -58,23 +58,18 @@ fn proofs(quick: bool, verilog: &Path) -> Result<Vec<Proof>, String> {
     v.extend(tb::formal::conservative::slab_fix_proofs(
         &g6, &module, &text, l, true, true,
     )?);
-    for fmt in golden::format::fixed::FixFormat::presets() {
-        let (module, text) = (
-            rtl::names::slab_fix_module(&fmt),
-            rtl::export::slab_fix_verilog(&fmt)?,
-        );
-        let l = rtl::slab::fix::slab_fix_latency(rtl::slab::fix::SLAB_FIX_CUTS);
-        v.extend(tb::formal::conservative::slab_fix_proofs(
-            &fmt, &module, &text, l, false, false,
-        )?);
-    }
-    for ((module, text, l), fmt) in rtl::export::slab_fix_deep_verilog()
-        .into_iter()
-        .zip(golden::format::fixed::FixFormat::presets())
-    {
-        v.extend(tb::formal::conservative::slab_fix_proofs(
-            &fmt, &module, &text, l, false, false,
-        )?);
+    // Every fixed slab tester of the catalogue: the presets at the default and the 6-clock depth.
+    for e in rtl::export::catalog() {
+        if let rtl::export::Family::SlabFix { fmt, .. } = e.family {
+            v.extend(tb::formal::conservative::slab_fix_proofs(
+                &fmt,
+                &e.module,
+                &e.verilog(),
+                e.latency,
+                false,
+                false,
+            )?);
+        }
     }
     let lat_path = verilog.join("latency.csv");
     let lat =

@@ -229,19 +229,9 @@ pub fn run(
             }
         }
         (Dp::Fix(bf, map), _) => {
-            let f = bf.base;
-            if f == FixFormat::b8() {
-                run_rtl::<rtl::BundleSplitB8>(bf, map, &vs, &at, vcd, sink)?;
-            } else if f == FixFormat::b12() {
-                run_rtl::<rtl::BundleSplitB12>(bf, map, &vs, &at, vcd, sink)?;
-            } else if f == FixFormat::b16() {
-                run_rtl::<rtl::BundleSplitB16>(bf, map, &vs, &at, vcd, sink)?;
-            } else {
-                return Err(format!(
-                    "no results processor instantiated for {} (b8, b12, b16 are)",
-                    f.name()
-                ));
-            }
+            rtl::with_bundle_split!(&bf.base, S, {
+                run_rtl::<S>(bf, map, &vs, &at, vcd, sink)
+            })??;
         }
         (Dp::Float(_), _) => {
             return Err("float bundles run on the model engine (the float pair has no results processor \

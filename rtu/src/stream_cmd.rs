@@ -94,11 +94,7 @@ pub fn run(a: &Args, out: &Path) -> Result<String, String> {
             )
         })?;
     let name = ["b8", "b12", "b16"][preset];
-    match preset {
-        0 => measure(a, &bf, name, out, replay::<rtl::BundleStreamB8>),
-        1 => measure(a, &bf, name, out, replay::<rtl::BundleStreamB12>),
-        _ => measure(a, &bf, name, out, replay::<rtl::BundleStreamB16>),
-    }
+    rtl::with_bundle_stream!(&bf.base, S, { measure(a, &bf, name, out, replay::<S>) })?
 }
 
 /// [`run`] on the processor over `dp` (format `name`), whose job trees `replay` runs.

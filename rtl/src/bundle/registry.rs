@@ -1,96 +1,186 @@
-//! The bundle blocks that exist: the fixed pair (at 3 and 5 clocks) and the results processors over each preset grid, and the
-//! float pair (at 9 and 13 clocks) and its streaming processor in binary32, bfloat16 and binary16.
+//! The bundle blocks that exist, one table per datapath: [`bundle_fix_presets!`](crate::bundle_fix_presets)
+//! (over each preset grid: the fixed pair at 3 and 5 clocks, the results processor, and the streaming
+//! processor around either pair) and [`bundle_float_presets!`](crate::bundle_float_presets) (in binary32,
+//! bfloat16 and binary16: the float pair at 9 and 13 clocks and the streaming processor around either).
+//! From each table come the type aliases, the format list and the dispatch below (`with_bundle_float!`,
+//! `with_bundle_split!`, `with_bundle_stream!`), so a format is added by one row. Which of them are
+//! exported is the export catalogue's choice (`rtl/src/export.rs`).
 
-use super::pair_fix::BundleFix;
-use super::pair_float::BundleFloat;
-use super::split::BundleSplit;
-use super::stream::BundleStream;
-use super::stream_float::BundleStreamFloat;
+/// Calls `$crate::$cb!(args... [(preset, [G, V, D, T], Pair, PairP5, Split, Stream, StreamP5), ...])` with
+/// the fixed bundle blocks over the presets (`golden::bundle::fix::BundleFixFormat::presets()`, named by
+/// their grid, `golden::format::fixed::FixFormat::b8()`, ...): `Pair` is `BundleFix<G, V, D, T>` (3 clocks),
+/// `PairP5` the 5-clock pair (products and compares registered, `rtl::bundle::edge_fix::BUNDLE_TEST_CUTS_DEEP`),
+/// `Split` the results processor (16 rays), `Stream` and `StreamP5` the streaming processor (jobs in
+/// flight, 4 sets of 16 rays) around the 3-clock and the 5-clock pair.
+#[doc(hidden)]
+#[macro_export]
+macro_rules! bundle_fix_presets {
+    ($($call:tt)*) => {
+        $crate::__call_with_rows! {
+            $($call)* [
+                (b8, [8, 9, 9, 14], BundleFixB8, BundleFixB8P5, BundleSplitB8, BundleStreamB8, BundleStreamB8P5),
+                (b12, [12, 13, 13, 20], BundleFixB12, BundleFixB12P5, BundleSplitB12, BundleStreamB12, BundleStreamB12P5),
+                (b16, [16, 17, 17, 24], BundleFixB16, BundleFixB16P5, BundleSplitB16, BundleStreamB16, BundleStreamB16P5),
+            ]
+        }
+    };
+}
 
-/// The fixed-point AllHit + AnyHit bundle pair over b8 (`FD = 6`).
-pub type BundleFixB8 = BundleFix<8, 9, 9, 14>;
-/// The same over b12 (`FD = 10`).
-pub type BundleFixB12 = BundleFix<12, 13, 13, 20>;
-/// The same over b16 (`FD = 14`).
-pub type BundleFixB16 = BundleFix<16, 17, 17, 24>;
-/// The 5-clock fixed pair over b8 (products and compares registered, `rtl::bundle::edge_fix::cut`).
-pub type BundleFixB8P5 = BundleFix<8, 9, 9, 14, { super::edge_fix::BUNDLE_TEST_CUTS_DEEP }>;
-/// The same over b12.
-pub type BundleFixB12P5 = BundleFix<12, 13, 13, 20, { super::edge_fix::BUNDLE_TEST_CUTS_DEEP }>;
-/// The same over b16.
-pub type BundleFixB16P5 = BundleFix<16, 17, 17, 24, { super::edge_fix::BUNDLE_TEST_CUTS_DEEP }>;
+/// Calls `$crate::$cb!(args... [(name, E, M, N, Pair, PairP13, Stream, StreamP13), ...])` with the float
+/// bundle blocks: `Pair` is `BundleFloat<E, M, N>` (9 clocks), `PairP13` the 13-clock pair (every optional
+/// cut of its adders and multipliers, `rtl::fp::cuts::ALL`), `Stream` and `StreamP13` the streaming
+/// processor around either.
+#[doc(hidden)]
+#[macro_export]
+macro_rules! bundle_float_presets {
+    ($($call:tt)*) => {
+        $crate::__call_with_rows! {
+            $($call)* [
+                (fp32, 8, 23, 32, BundleFloatFp32, BundleFloatFp32P13, BundleStreamFp32, BundleStreamFp32P13),
+                (bf16, 8, 7, 16, BundleFloatBf16, BundleFloatBf16P13, BundleStreamBf16, BundleStreamBf16P13),
+                (fp16, 5, 10, 16, BundleFloatFp16, BundleFloatFp16P13, BundleStreamFp16, BundleStreamFp16P13),
+            ]
+        }
+    };
+}
 
-/// The float AllHit + AnyHit bundle pair in binary32.
-pub type BundleFloatFp32 = BundleFloat<8, 23, 32>;
-/// The same in bfloat16.
-pub type BundleFloatBf16 = BundleFloat<8, 7, 16>;
-/// The same in binary16.
-pub type BundleFloatFp16 = BundleFloat<5, 10, 16>;
-/// The 13-clock float pair in binary32 (every optional cut of its adders and multipliers,
-/// [`crate::fp::cuts::ALL`]).
-pub type BundleFloatFp32P13 = BundleFloat<8, 23, 32, { crate::fp::cuts::ALL }>;
-/// The same in bfloat16.
-pub type BundleFloatBf16P13 = BundleFloat<8, 7, 16, { crate::fp::cuts::ALL }>;
-/// The same in binary16.
-pub type BundleFloatFp16P13 = BundleFloat<5, 10, 16, { crate::fp::cuts::ALL }>;
+/// Declares the fixed bundle blocks' aliases (callback of `bundle_fix_presets!`).
+#[doc(hidden)]
+#[macro_export]
+macro_rules! __bundle_fix_preset_items {
+    ([$(($p:ident, [$($w:literal),*], $pair:ident, $pair5:ident, $split:ident, $stream:ident, $stream5:ident)),* $(,)?]) => {
+        $(
+            #[doc = concat!(
+                "The fixed-point AllHit + AnyHit bundle pair over ", stringify!($p),
+                " (3 clocks): `BundleFix<", stringify!($($w),*), ">`."
+            )]
+            pub type $pair = $crate::bundle::pair_fix::BundleFix<$($w),*>;
+            #[doc = concat!(
+                "The 5-clock fixed pair over ", stringify!($p),
+                " (products and compares registered, `rtl::bundle::edge_fix::cut`)."
+            )]
+            pub type $pair5 = $crate::bundle::pair_fix::BundleFix<
+                $($w,)*
+                { $crate::bundle::edge_fix::BUNDLE_TEST_CUTS_DEEP },
+            >;
+            #[doc = concat!(
+                "The bundle results processor (`rtl::bundle::split::BundleSplit`, 16 rays) over ",
+                stringify!($p), "."
+            )]
+            pub type $split = $crate::bundle::split::BundleSplit<$($w),*>;
+            #[doc = concat!(
+                "The streaming results processor (`rtl::bundle::stream::BundleStream`, jobs in flight, ",
+                "4 sets of 16 rays) over ", stringify!($p), " around the 3-clock pair."
+            )]
+            pub type $stream = $crate::bundle::stream::BundleStream<$($w),*>;
+            #[doc = concat!(
+                "The streaming results processor over ", stringify!($p), " around the 5-clock pair."
+            )]
+            pub type $stream5 = $crate::bundle::stream::BundleStream<
+                $($w,)*
+                { $crate::bundle::edge_fix::BUNDLE_TEST_CUTS_DEEP },
+            >;
+        )*
+    };
+}
 
-/// The float formats with an instantiated float bundle pair (`with_bundle_float!`).
-pub const BUNDLE_FLOAT_FORMATS: [golden::format::float::FloatFormat; 3] = [
-    golden::format::float::FloatFormat::FP32,
-    golden::format::float::FloatFormat::BF16,
-    golden::format::float::FloatFormat::FP16,
-];
+/// Declares the float bundle blocks' aliases and [`BUNDLE_FLOAT_FORMATS`] (callback of
+/// `bundle_float_presets!`).
+#[doc(hidden)]
+#[macro_export]
+macro_rules! __bundle_float_preset_items {
+    ([$(($name:ident, $e:literal, $m:literal, $n:literal, $pair:ident, $pair13:ident, $stream:ident, $stream13:ident)),* $(,)?]) => {
+        $(
+            #[doc = concat!(
+                "The float AllHit + AnyHit bundle pair in ", stringify!($name), " (9 clocks)."
+            )]
+            pub type $pair = $crate::bundle::pair_float::BundleFloat<$e, $m, $n>;
+            #[doc = concat!(
+                "The 13-clock float pair in ", stringify!($name),
+                " (every optional cut of its adders and multipliers, `rtl::fp::cuts::ALL`)."
+            )]
+            pub type $pair13 =
+                $crate::bundle::pair_float::BundleFloat<$e, $m, $n, { $crate::fp::cuts::ALL }>;
+            #[doc = concat!(
+                "The streaming results processor around the float pair ",
+                "(`rtl::bundle::stream_float::BundleStreamFloat`) in ", stringify!($name), "."
+            )]
+            pub type $stream = $crate::bundle::stream_float::BundleStreamFloat<$e, $m, $n>;
+            #[doc = concat!(
+                "The same in ", stringify!($name), " around the 13-clock float pair."
+            )]
+            pub type $stream13 = $crate::bundle::stream_float::BundleStreamFloat<
+                $e,
+                $m,
+                $n,
+                { $crate::fp::cuts::ALL },
+            >;
+        )*
 
-/// The bundle results processor ([`BundleSplit`], 16 rays) over b8 (`FD = 6`).
-pub type BundleSplitB8 = BundleSplit<8, 9, 9, 14>;
-/// The same over b12 (`FD = 10`).
-pub type BundleSplitB12 = BundleSplit<12, 13, 13, 20>;
-/// The same over b16 (`FD = 14`).
-pub type BundleSplitB16 = BundleSplit<16, 17, 17, 24>;
+        /// The float formats with an instantiated float bundle pair (the rows of
+        /// `bundle_float_presets!`, `with_bundle_float!`).
+        pub const BUNDLE_FLOAT_FORMATS: [golden::format::float::FloatFormat; [$($e),*].len()] =
+            [$(golden::format::float::FloatFormat { e: $e, m: $m }),*];
+    };
+}
 
-/// The streaming results processor ([`BundleStream`], jobs in flight, 4 sets of 16 rays) over b8.
-pub type BundleStreamB8 = BundleStream<8, 9, 9, 14>;
-/// The same over b12.
-pub type BundleStreamB12 = BundleStream<12, 13, 13, 20>;
-/// The same over b16.
-pub type BundleStreamB16 = BundleStream<16, 17, 17, 24>;
-/// The streaming processor over the 5-clock fixed pair, b12.
-pub type BundleStreamB12P5 =
-    BundleStream<12, 13, 13, 20, { super::edge_fix::BUNDLE_TEST_CUTS_DEEP }>;
+crate::bundle_fix_presets!(__bundle_fix_preset_items!());
+crate::bundle_float_presets!(__bundle_float_preset_items!());
 
-/// The streaming results processor around the float pair ([`BundleStreamFloat`]) in binary32.
-pub type BundleStreamFp32 = BundleStreamFloat<8, 23, 32>;
-/// The same in bfloat16.
-pub type BundleStreamBf16 = BundleStreamFloat<8, 7, 16>;
-/// The same in binary16.
-pub type BundleStreamFp16 = BundleStreamFloat<5, 10, 16>;
-/// The same in binary16 around the 13-clock float pair.
-pub type BundleStreamFp16P13 = BundleStreamFloat<5, 10, 16, { crate::fp::cuts::ALL }>;
-
-/// Runs `$body` with `$t` bound to the `BundleFloat` type of a float format, or returns an error for a
-/// format without an instantiated block.
+/// Runs `$body` with `$t` bound to the default (9-clock) `BundleFloat` type of a float format, or returns
+/// an error for a format without an instantiated block.
 #[macro_export]
 macro_rules! with_bundle_float {
     ($f:expr, $t:ident, $body:block) => {{
         let f: &golden::format::float::FloatFormat = $f;
-        match (f.e, f.m) {
-            (8, 23) => {
-                type $t = $crate::BundleFloatFp32;
-                Ok($body)
-            }
-            (8, 7) => {
-                type $t = $crate::BundleFloatBf16;
-                Ok($body)
-            }
-            (5, 10) => {
-                type $t = $crate::BundleFloatFp16;
-                Ok($body)
-            }
-            _ => Err(format!(
-                "no BundleFloat instance for float format {}: instantiated are e8m23, e8m7, e5m10 \
-                 (add a type alias in rtl/src/bundle/registry.rs for another)",
-                f.name()
-            )),
-        }
+        $crate::bundle_float_presets!(__with_bundle_float_arms!(f, $t, $body))
     }};
+}
+
+/// The dispatch arms of `with_bundle_float!` (callback of `bundle_float_presets!`).
+#[doc(hidden)]
+#[macro_export]
+macro_rules! __with_bundle_float_arms {
+    ($f:ident, $t:ident, $body:block
+        [$(($name:ident, $e:literal, $m:literal, $n:literal, $pair:ident, $pair13:ident, $stream:ident, $stream13:ident)),* $(,)?]) => {
+        $crate::__float_arms!($f, $t, $body, "BundleFloat",
+            "bundle_float_presets! in rtl/src/bundle/registry.rs" [$(($e, $m, $crate::$pair)),*])
+    };
+}
+
+/// Runs `$body` with `$t` bound to the results processor (`BundleSplit`) over a preset grid (the
+/// bundle format's base, `golden::bundle::fix::BundleFixFormat::base`), or returns an error for another.
+#[macro_export]
+macro_rules! with_bundle_split {
+    ($base:expr, $t:ident, $body:block) => {{
+        let f: &golden::format::fixed::FixFormat = $base;
+        $crate::bundle_fix_presets!(__with_bundle_fix_arms!(f, split, $t, $body))
+    }};
+}
+
+/// Runs `$body` with `$t` bound to the streaming processor (`BundleStream`, around the 3-clock pair) over
+/// a preset grid, or returns an error for another.
+#[macro_export]
+macro_rules! with_bundle_stream {
+    ($base:expr, $t:ident, $body:block) => {{
+        let f: &golden::format::fixed::FixFormat = $base;
+        $crate::bundle_fix_presets!(__with_bundle_fix_arms!(f, stream, $t, $body))
+    }};
+}
+
+/// The dispatch arms of `with_bundle_split!` and `with_bundle_stream!` (callback of
+/// `bundle_fix_presets!`; `split` or `stream` picks the column).
+#[doc(hidden)]
+#[macro_export]
+macro_rules! __with_bundle_fix_arms {
+    ($f:ident, split, $t:ident, $body:block
+        [$(($p:ident, [$($w:literal),*], $pair:ident, $pair5:ident, $split:ident, $stream:ident, $stream5:ident)),* $(,)?]) => {
+        $crate::__fix_preset_arms!($f, $t, $body, "BundleSplit (results processor)",
+            "bundle_fix_presets! in rtl/src/bundle/registry.rs" [$(($p, $crate::$split)),*])
+    };
+    ($f:ident, stream, $t:ident, $body:block
+        [$(($p:ident, [$($w:literal),*], $pair:ident, $pair5:ident, $split:ident, $stream:ident, $stream5:ident)),* $(,)?]) => {
+        $crate::__fix_preset_arms!($f, $t, $body, "BundleStream (streaming processor)",
+            "bundle_fix_presets! in rtl/src/bundle/registry.rs" [$(($p, $crate::$stream)),*])
+    };
 }

@@ -342,17 +342,6 @@ impl<const G: usize, const V: usize, const D: usize, const T: usize, const CUTS:
     }
 }
 
-/// The exported configurations `(format, cut points of the pair)`, in the order of
-/// [`bundle_stream_verilog`]: b12 and b16 over the 3-clock pair, b12 over the 5-clock one.
-pub fn bundle_stream_configs() -> Vec<(BundleFixFormat, usize)> {
-    let [_, b12, b16] = BundleFixFormat::presets();
-    vec![
-        (b12, BUNDLE_TEST_CUTS),
-        (b16, BUNDLE_TEST_CUTS),
-        (b12, crate::bundle::edge_fix::BUNDLE_TEST_CUTS_DEEP),
-    ]
-}
-
 /// A streaming processor of any datapath and width, seen from a testbench.
 pub trait BundleStreamIo: Block {
     /// The pair's datapath (its format).

@@ -333,18 +333,6 @@ impl<const E: usize, const M: usize, const N: usize, const CUTS: usize> Logic
     }
 }
 
-/// The exported configurations `(format, cut points of the pair)`, in the order of
-/// [`bundle_stream_float_verilog`]: binary32, bfloat16 and binary16 over the 9-clock pair, binary16
-/// over the 13-clock one.
-pub fn bundle_stream_float_configs() -> Vec<(FloatFormat, usize)> {
-    vec![
-        (FloatFormat::FP32, 0),
-        (FloatFormat::BF16, 0),
-        (FloatFormat::FP16, 0),
-        (FloatFormat::FP16, crate::fp::cuts::ALL),
-    ]
-}
-
 /// The re-bounded bundle on a float processor's `rb_*` ports (`word(base, axis)` a port's value): the
 /// bundle when `rb_valid` is high, `None` when it is low and every field is zero (what the block drives
 /// then). Fields that are not zero while `rb_valid` is low decode as a bundle with every field

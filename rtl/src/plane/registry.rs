@@ -1,121 +1,141 @@
-//! The cull-plane testers that exist: the fixed tester over each preset grid (table option and the
-//! quotient option) and the float tester in binary16, bfloat16 and binary32 with K planes.
+//! The cull-plane testers that exist, one table per datapath: [`plane_fix_presets!`](crate::plane_fix_presets)
+//! (the fixed tester over each preset grid: the table option at the default and the 11-clock depth, and
+//! the quotient option) and [`plane_float_configs!`](crate::plane_float_configs) (the float tester's
+//! format and plane count pairs). From each table come the type aliases and the configuration list
+//! below, and the dispatch (`with_plane_fix!`, `with_plane_float!`), so a configuration is added by one
+//! row. Which of them are exported (1 and 4 planes) is the export catalogue's choice
+//! (`rtl/src/export.rs`).
 
-use super::fix::{PlaneFix, PLANE_FIX_DEEP};
-use super::float::PlaneFloat;
-use super::quot::PlaneQuot;
-use golden::format::float::FloatFormat;
+/// Calls `$crate::$cb!(args... [(preset, [G, D, I, T, N, DB, WB, SB, EB], Alias, DeepAlias, [QB, QW],
+/// QuotAlias), ...])` with the fixed cull-plane testers over the presets
+/// (`golden::format::fixed::FixFormat::b8()`, ...; `golden::plane::fix::CullFixFormat::over` gives the
+/// plane format, `N = 8` and `FD = G - 1`): `Alias<K>` is the table option `PlaneFix<G, .., EB, K>` at the
+/// default depth, `DeepAlias<K>` the same at the 11-clock depth (`rtl::plane::fix::PLANE_FIX_DEEP`), and
+/// `QuotAlias<K>` the quotient option `PlaneQuot<G, .., EB, QB, QW, K>`.
+#[doc(hidden)]
+#[macro_export]
+macro_rules! plane_fix_presets {
+    ($($call:tt)*) => {
+        $crate::__call_with_rows! {
+            $($call)* [
+                (b8, [8, 9, 12, 14, 8, 11, 20, 21, 20], PlaneFixB8, PlaneFixB8P11, [19, 40], PlaneQuotB8),
+                (b12, [12, 13, 16, 20, 8, 14, 24, 25, 23], PlaneFixB12, PlaneFixB12P11, [22, 47], PlaneQuotB12),
+                (b16, [16, 17, 20, 24, 8, 17, 28, 29, 26], PlaneFixB16, PlaneFixB16P11, [25, 54], PlaneQuotB16),
+            ]
+        }
+    };
+}
 
-/// The chained slab + cull-plane tester over b12 with the default plane format (`N = 8`, `FD = 11`,
-/// `R = 8`) and `K` planes.
-pub type PlaneFixB12<const K: usize> = PlaneFix<12, 13, 16, 20, 8, 14, 24, 25, 23, K>;
-/// The same over b8 (`FD = 8`).
-pub type PlaneFixB8<const K: usize> = PlaneFix<8, 9, 12, 14, 8, 11, 20, 21, 20, K>;
-/// The same over b16 (`FD = 14`).
-pub type PlaneFixB16<const K: usize> = PlaneFix<16, 17, 20, 24, 8, 17, 28, 29, 26, K>;
-/// [`PlaneFixB8`] in the deep configuration (11 clocks, [`PLANE_FIX_DEEP`]).
-pub type PlaneFixB8P11<const K: usize> =
-    PlaneFix<8, 9, 12, 14, 8, 11, 20, 21, 20, K, { PLANE_FIX_DEEP.0 }, { PLANE_FIX_DEEP.1 }>;
-/// [`PlaneFixB12`] in the deep configuration (11 clocks, [`PLANE_FIX_DEEP`]).
-pub type PlaneFixB12P11<const K: usize> =
-    PlaneFix<12, 13, 16, 20, 8, 14, 24, 25, 23, K, { PLANE_FIX_DEEP.0 }, { PLANE_FIX_DEEP.1 }>;
-/// [`PlaneFixB16`] in the deep configuration (11 clocks, [`PLANE_FIX_DEEP`]).
-pub type PlaneFixB16P11<const K: usize> =
-    PlaneFix<16, 17, 20, 24, 8, 17, 28, 29, 26, K, { PLANE_FIX_DEEP.0 }, { PLANE_FIX_DEEP.1 }>;
+/// Calls `$crate::$cb!(args... [(E, M, N, K, Alias), ...])` with the chained float node testers (slab +
+/// `K` cull planes) that are instantiated: `Alias` is `PlaneFloat<E, M, N, K>`.
+#[doc(hidden)]
+#[macro_export]
+macro_rules! plane_float_configs {
+    ($($call:tt)*) => {
+        $crate::__call_with_rows! {
+            $($call)* [
+                (5, 10, 16, 1, PlaneFloatE5M10K1),
+                (5, 10, 16, 2, PlaneFloatE5M10K2),
+                (5, 10, 16, 4, PlaneFloatE5M10K4),
+                (5, 10, 16, 8, PlaneFloatE5M10K8),
+                (8, 7, 16, 1, PlaneFloatE8M7K1),
+                (8, 7, 16, 2, PlaneFloatE8M7K2),
+                (8, 7, 16, 4, PlaneFloatE8M7K4),
+                (8, 23, 32, 1, PlaneFloatE8M23K1),
+                (8, 23, 32, 2, PlaneFloatE8M23K2),
+                (8, 23, 32, 4, PlaneFloatE8M23K4),
+            ]
+        }
+    };
+}
 
-/// The chained float node tester (slab + 1 cull plane) in binary16.
-pub type PlaneFloatE5M10K1 = PlaneFloat<5, 10, 16, 1>;
-/// The chained float node tester (slab + 2 cull planes) in binary16.
-pub type PlaneFloatE5M10K2 = PlaneFloat<5, 10, 16, 2>;
-/// The chained float node tester (slab + 4 cull planes) in binary16.
-pub type PlaneFloatE5M10K4 = PlaneFloat<5, 10, 16, 4>;
-/// The chained float node tester (slab + 8 cull planes, the most) in binary16.
-pub type PlaneFloatE5M10K8 = PlaneFloat<5, 10, 16, 8>;
-/// The chained float node tester (slab + 1 cull plane) in bfloat16.
-pub type PlaneFloatE8M7K1 = PlaneFloat<8, 7, 16, 1>;
-/// The chained float node tester (slab + 2 cull planes) in bfloat16.
-pub type PlaneFloatE8M7K2 = PlaneFloat<8, 7, 16, 2>;
-/// The chained float node tester (slab + 4 cull planes) in bfloat16.
-pub type PlaneFloatE8M7K4 = PlaneFloat<8, 7, 16, 4>;
-/// The chained float node tester (slab + 1 cull plane) in binary32.
-pub type PlaneFloatE8M23K1 = PlaneFloat<8, 23, 32, 1>;
-/// The chained float node tester (slab + 2 cull planes) in binary32.
-pub type PlaneFloatE8M23K2 = PlaneFloat<8, 23, 32, 2>;
-/// The chained float node tester (slab + 4 cull planes) in binary32.
-pub type PlaneFloatE8M23K4 = PlaneFloat<8, 23, 32, 4>;
+/// Declares the fixed testers' aliases (callback of `plane_fix_presets!`).
+#[doc(hidden)]
+#[macro_export]
+macro_rules! __plane_fix_preset_items {
+    ([$(($p:ident, [$($w:literal),*], $alias:ident, $deep:ident, [$($q:literal),*], $quot:ident)),* $(,)?]) => {
+        $(
+            #[doc = concat!(
+                "The chained slab + cull-plane tester (table option, default depth) over ",
+                stringify!($p), " with the default plane format and `K` planes: `PlaneFix<",
+                stringify!($($w),*), ", K>`."
+            )]
+            pub type $alias<const K: usize> = $crate::plane::fix::PlaneFix<$($w,)* K>;
+            #[doc = concat!(
+                "The same over ", stringify!($p),
+                " in the deep configuration (11 clocks, `rtl::plane::fix::PLANE_FIX_DEEP`)."
+            )]
+            pub type $deep<const K: usize> = $crate::plane::fix::PlaneFix<
+                $($w,)*
+                K,
+                { $crate::plane::fix::PLANE_FIX_DEEP.0 },
+                { $crate::plane::fix::PLANE_FIX_DEEP.1 },
+            >;
+            #[doc = concat!(
+                "The quotient option of the chained tester (`rtl::plane::quot::PlaneQuot`) over ",
+                stringify!($p), " with `K` planes."
+            )]
+            pub type $quot<const K: usize> = $crate::plane::quot::PlaneQuot<$($w,)* $($q,)* K>;
+        )*
+    };
+}
 
-/// The fraction option of the chained tester ([`PlaneQuot`]) over b12 (`N = 8`, `FD = 11`)
-/// with `K` planes.
-pub type PlaneQuotB12<const K: usize> = PlaneQuot<12, 13, 16, 20, 8, 14, 24, 25, 23, 22, 47, K>;
-/// The same over b8 (`FD = 8`).
-pub type PlaneQuotB8<const K: usize> = PlaneQuot<8, 9, 12, 14, 8, 11, 20, 21, 20, 19, 40, K>;
-/// The same over b16 (`FD = 14`).
-pub type PlaneQuotB16<const K: usize> = PlaneQuot<16, 17, 20, 24, 8, 17, 28, 29, 26, 25, 54, K>;
+/// Declares the float testers' aliases and [`PLANE_FLOAT_CONFIGS`] (callback of `plane_float_configs!`).
+#[doc(hidden)]
+#[macro_export]
+macro_rules! __plane_float_config_items {
+    ([$(($e:literal, $m:literal, $n:literal, $k:literal, $alias:ident)),* $(,)?]) => {
+        $(
+            #[doc = concat!(
+                "The chained float node tester (slab + ", stringify!($k), " cull planes) in E",
+                stringify!($e), "M", stringify!($m), "."
+            )]
+            pub type $alias = $crate::plane::float::PlaneFloat<$e, $m, $n, $k>;
+        )*
 
-/// The (float format, planes) pairs with an instantiated `PlaneFloat` (the aliases above).
-pub const PLANE_FLOAT_CONFIGS: [(FloatFormat, usize); 9] = [
-    (FloatFormat::FP16, 1),
-    (FloatFormat::FP16, 2),
-    (FloatFormat::FP16, 4),
-    (FloatFormat::BF16, 1),
-    (FloatFormat::BF16, 2),
-    (FloatFormat::BF16, 4),
-    (FloatFormat::FP32, 1),
-    (FloatFormat::FP32, 2),
-    (FloatFormat::FP32, 4),
-];
+        /// The (float format, planes) pairs with an instantiated `PlaneFloat` (the rows of
+        /// `plane_float_configs!`).
+        pub const PLANE_FLOAT_CONFIGS: [(golden::format::float::FloatFormat, usize); [$($k),*].len()] =
+            [$((golden::format::float::FloatFormat { e: $e, m: $m }, $k)),*];
+    };
+}
+
+crate::plane_fix_presets!(__plane_fix_preset_items!());
+crate::plane_float_configs!(__plane_float_config_items!());
 
 /// Runs `$body` with `$t` bound to the `PlaneFloat` type of a float format and plane count, or returns an
-/// error for a configuration without an instantiated block.
+/// error for a configuration without an instantiated block. `$body` is compiled once per configuration.
 #[macro_export]
 macro_rules! with_plane_float {
     ($f:expr, $k:expr, $t:ident, $body:block) => {{
         let f: &golden::format::float::FloatFormat = $f;
         let k: usize = $k;
-        match (f.e, f.m, k) {
-            (5, 10, 1) => {
-                type $t = $crate::PlaneFloatE5M10K1;
-                Ok($body)
-            }
-            (5, 10, 2) => {
-                type $t = $crate::PlaneFloatE5M10K2;
-                Ok($body)
-            }
-            (5, 10, 4) => {
-                type $t = $crate::PlaneFloatE5M10K4;
-                Ok($body)
-            }
-            (8, 7, 1) => {
-                type $t = $crate::PlaneFloatE8M7K1;
-                Ok($body)
-            }
-            (8, 7, 2) => {
-                type $t = $crate::PlaneFloatE8M7K2;
-                Ok($body)
-            }
-            (8, 7, 4) => {
-                type $t = $crate::PlaneFloatE8M7K4;
-                Ok($body)
-            }
-            (8, 23, 1) => {
-                type $t = $crate::PlaneFloatE8M23K1;
-                Ok($body)
-            }
-            (8, 23, 2) => {
-                type $t = $crate::PlaneFloatE8M23K2;
-                Ok($body)
-            }
-            (8, 23, 4) => {
-                type $t = $crate::PlaneFloatE8M23K4;
-                Ok($body)
-            }
+        $crate::plane_float_configs!(__with_plane_float_arms!(f, k, $t, $body))
+    }};
+}
+
+/// The dispatch arms of `with_plane_float!` (callback of `plane_float_configs!`).
+#[doc(hidden)]
+#[macro_export]
+macro_rules! __with_plane_float_arms {
+    ($f:ident, $kk:ident, $t:ident, $body:block
+        [$(($e:literal, $m:literal, $n:literal, $k:literal, $alias:ident)),* $(,)?]) => {
+        match ($f.e, $f.m, $kk) {
+            $(
+                ($e, $m, $k) => {
+                    type $t = $crate::$alias;
+                    Ok($body)
+                }
+            )*
             _ => Err(format!(
-                "no PlaneFloat instance for {} with {k} planes: instantiated are e5m10, e8m7, e8m23 \
-                 with 1, 2, 4 planes (add a type alias in rtl/src/plane/registry.rs for another)",
-                f.name()
+                "no PlaneFloat instance for {} with {} planes: instantiated are {} \
+                 (add a row to plane_float_configs! in rtl/src/plane/registry.rs for another)",
+                $f.name(),
+                $kk,
+                [$(concat!("e", stringify!($e), "m", stringify!($m), " k", stringify!($k))),*].join(", ")
             )),
         }
-    }};
+    };
 }
 
 /// Runs `$body` with `$t` bound to the `PlaneFix` type (table option, default depth) over a preset slab
@@ -124,16 +144,17 @@ macro_rules! with_plane_float {
 #[macro_export]
 macro_rules! with_plane_fix {
     ($base:expr, $k:expr, $t:ident, $body:block) => {{
+        let f: &golden::format::fixed::FixFormat = $base;
         let k: usize = $k;
         match k {
-            1 => $crate::__with_plane_fix_k!($base, 1, $t, $body),
-            2 => $crate::__with_plane_fix_k!($base, 2, $t, $body),
-            3 => $crate::__with_plane_fix_k!($base, 3, $t, $body),
-            4 => $crate::__with_plane_fix_k!($base, 4, $t, $body),
-            5 => $crate::__with_plane_fix_k!($base, 5, $t, $body),
-            6 => $crate::__with_plane_fix_k!($base, 6, $t, $body),
-            7 => $crate::__with_plane_fix_k!($base, 7, $t, $body),
-            8 => $crate::__with_plane_fix_k!($base, 8, $t, $body),
+            1 => $crate::plane_fix_presets!(__with_plane_fix_arms!(f, 1, $t, $body)),
+            2 => $crate::plane_fix_presets!(__with_plane_fix_arms!(f, 2, $t, $body)),
+            3 => $crate::plane_fix_presets!(__with_plane_fix_arms!(f, 3, $t, $body)),
+            4 => $crate::plane_fix_presets!(__with_plane_fix_arms!(f, 4, $t, $body)),
+            5 => $crate::plane_fix_presets!(__with_plane_fix_arms!(f, 5, $t, $body)),
+            6 => $crate::plane_fix_presets!(__with_plane_fix_arms!(f, 6, $t, $body)),
+            7 => $crate::plane_fix_presets!(__with_plane_fix_arms!(f, 7, $t, $body)),
+            8 => $crate::plane_fix_presets!(__with_plane_fix_arms!(f, 8, $t, $body)),
             k => Err(format!(
                 "{k} planes: the cull-plane RTL takes 1 to 8 (the model takes 0 to 8)"
             )),
@@ -141,27 +162,13 @@ macro_rules! with_plane_fix {
     }};
 }
 
-/// The format arms of `with_plane_fix!` for one plane count.
+/// The format arms of `with_plane_fix!` for one plane count (callback of `plane_fix_presets!`).
 #[doc(hidden)]
 #[macro_export]
-macro_rules! __with_plane_fix_k {
-    ($base:expr, $k:literal, $t:ident, $body:block) => {{
-        let f: &golden::format::fixed::FixFormat = $base;
-        if *f == golden::format::fixed::FixFormat::b8() {
-            type $t = $crate::PlaneFixB8<$k>;
-            Ok($body)
-        } else if *f == golden::format::fixed::FixFormat::b12() {
-            type $t = $crate::PlaneFixB12<$k>;
-            Ok($body)
-        } else if *f == golden::format::fixed::FixFormat::b16() {
-            type $t = $crate::PlaneFixB16<$k>;
-            Ok($body)
-        } else {
-            Err(format!(
-                "no PlaneFix instance for {}: the rtl and verilator engines take b8, b12, b16 \
-                 (add a type alias in rtl/src/plane/registry.rs for another)",
-                f.name()
-            ))
-        }
-    }};
+macro_rules! __with_plane_fix_arms {
+    ($f:ident, $k:literal, $t:ident, $body:block
+        [$(($p:ident, [$($w:literal),*], $alias:ident, $deep:ident, [$($q:literal),*], $quot:ident)),* $(,)?]) => {
+        $crate::__fix_preset_arms!($f, $t, $body, "PlaneFix",
+            "plane_fix_presets! in rtl/src/plane/registry.rs" [$(($p, $crate::$alias<$k>)),*])
+    };
 }

@@ -22,9 +22,9 @@
 #[doc(hidden)]
 #[macro_export]
 macro_rules! slab_fix_ladder {
-    ($cb:ident ! ( $($args:tt)* )) => {
-        $crate::$cb! {
-            $($args)* [
+    ($($call:tt)*) => {
+        $crate::__call_with_rows! {
+            $($call)* [
                 (6, 7, 10, 12, SlabFixG6),
                 (7, 8, 11, 13, SlabFixG7),
                 (8, 9, 12, 14, SlabFixG8),
@@ -50,9 +50,9 @@ macro_rules! slab_fix_ladder {
 #[doc(hidden)]
 #[macro_export]
 macro_rules! slab_float_ladder {
-    ($cb:ident ! ( $($args:tt)* )) => {
-        $crate::$cb! {
-            $($args)* [
+    ($($call:tt)*) => {
+        $crate::__call_with_rows! {
+            $($call)* [
                 (5, 3, 9, SlabFloatE5M3),
                 (5, 4, 10, SlabFloatE5M4),
                 (6, 3, 10, SlabFloatE6M3),

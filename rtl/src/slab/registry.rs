@@ -1,47 +1,129 @@
-//! The slab testers that exist: the preset aliases of the fixed tester, the five float formats of the
-//! main job, and the per-format dispatch macros (`with_slab_fix!`, `with_slab_float!` and their ladder
-//! forms). The format ladder's aliases are in [`super::ladder`].
+//! The slab testers that exist, one table per datapath: [`slab_fix_presets!`](crate::slab_fix_presets)
+//! (the preset fixed formats, each at the default and the 6-clock depth) and
+//! [`slab_float_presets!`](crate::slab_float_presets) (the five float formats of the main job, each at
+//! the default and the 13-clock depth). From each table come the type aliases and the format list below,
+//! the per-format dispatch (`with_slab_fix!`, `with_slab_float!`) and the export catalogue's rows
+//! (`rtl/src/export.rs`), so a configuration is added by one row. The format ladder (every grid width,
+//! every ladder float format, default depth) has its own tables in [`super::ladder`].
 
-use super::fix::SlabFix;
+/// Calls `$crate::$cb!(args... [(preset, [G, D, I, T], Alias, DeepAlias), ...])` with the fixed slab
+/// testers over the presets (`golden::format::fixed::FixFormat::b8()`, ...): `Alias` is
+/// `SlabFix<G, D, I, T>` (the default depth, the same type as the ladder's `SlabFixG<G>`), `DeepAlias`
+/// the 6-clock tester ([`super::fix::SLAB_FIX_CUTS_DEEP`]: multiplies with registered operands and
+/// products).
+#[doc(hidden)]
+#[macro_export]
+macro_rules! slab_fix_presets {
+    ($($call:tt)*) => {
+        $crate::__call_with_rows! {
+            $($call)* [
+                (b8, [8, 9, 12, 14], SlabFixB8, SlabFixB8P6),
+                (b12, [12, 13, 16, 20], SlabFixB12, SlabFixB12P6),
+                (b16, [16, 17, 20, 24], SlabFixB16, SlabFixB16P6),
+            ]
+        }
+    };
+}
 
-/// The slab tester for `golden::format::fixed::FixFormat::b8()` (the same type as the ladder's `SlabFixG8`).
-pub type SlabFixB8 = SlabFix<8, 9, 12, 14>;
-/// The slab tester for `golden::format::fixed::FixFormat::b12()` (the same type as `SlabFixG12`).
-pub type SlabFixB12 = SlabFix<12, 13, 16, 20>;
-/// The slab tester for `golden::format::fixed::FixFormat::b16()` (the same type as `SlabFixG16`).
-pub type SlabFixB16 = SlabFix<16, 17, 20, 24>;
+/// Calls `$crate::$cb!(args... [(E, M, N, Alias, DeepAlias), ...])` with the five float formats of the
+/// main job, the export and the synthesis report: `Alias` is the ladder's default-depth tester
+/// (`rtl/src/slab/ladder.rs`), `DeepAlias` the 13-clock one ([`super::float::SLAB_FLOAT_CUTS_DEEP`]:
+/// adders cut after the alignment and after the normalisation, multipliers after the raw and after the
+/// normalised product).
+#[doc(hidden)]
+#[macro_export]
+macro_rules! slab_float_presets {
+    ($($call:tt)*) => {
+        $crate::__call_with_rows! {
+            $($call)* [
+                (8, 23, 32, SlabFloatE8M23, SlabFloatE8M23P13),
+                (8, 15, 24, SlabFloatE8M15, SlabFloatE8M15P13),
+                (8, 7, 16, SlabFloatE8M7, SlabFloatE8M7P13),
+                (5, 10, 16, SlabFloatE5M10, SlabFloatE5M10P13),
+                (6, 5, 12, SlabFloatE6M5, SlabFloatE6M5P13),
+            ]
+        }
+    };
+}
 
-/// The 6-clock slab tester for b8 ([`super::fix::SLAB_FIX_CUTS_DEEP`]: multiplies with registered
-/// operands and products).
-pub type SlabFixB8P6 = SlabFix<8, 9, 12, 14, { super::fix::SLAB_FIX_CUTS_DEEP }>;
-/// The 6-clock slab tester for b12.
-pub type SlabFixB12P6 = SlabFix<12, 13, 16, 20, { super::fix::SLAB_FIX_CUTS_DEEP }>;
-/// The 6-clock slab tester for b16.
-pub type SlabFixB16P6 = SlabFix<16, 17, 20, 24, { super::fix::SLAB_FIX_CUTS_DEEP }>;
+/// Declares the preset fixed testers' aliases (callback of `slab_fix_presets!`).
+#[doc(hidden)]
+#[macro_export]
+macro_rules! __slab_fix_preset_items {
+    ([$(($p:ident, [$($w:literal),*], $alias:ident, $deep:ident)),* $(,)?]) => {
+        $(
+            #[doc = concat!(
+                "The slab tester for `golden::format::fixed::FixFormat::", stringify!($p),
+                "()`: `SlabFix<", stringify!($($w),*), ">` (the ladder's alias of the same width is the same type)."
+            )]
+            pub type $alias = $crate::SlabFix<$($w),*>;
+            #[doc = concat!(
+                "The 6-clock slab tester for ", stringify!($p),
+                " (`rtl::slab::fix::SLAB_FIX_CUTS_DEEP`: multiplies with registered operands and products)."
+            )]
+            pub type $deep = $crate::SlabFix<$($w,)* { $crate::slab::fix::SLAB_FIX_CUTS_DEEP }>;
+        )*
+    };
+}
 
-/// Runs `$body` with `$t` bound to the `SlabFix` type of a preset format, or returns an error for a
-/// format without an instantiated block (const generics need the widths at compile time).
+/// Declares the float presets' deep aliases and [`SLAB_FLOAT_FORMATS`] (callback of
+/// `slab_float_presets!`).
+#[doc(hidden)]
+#[macro_export]
+macro_rules! __slab_float_preset_items {
+    ([$(($e:literal, $m:literal, $n:literal, $alias:ident, $deep:ident)),* $(,)?]) => {
+        $(
+            #[doc = concat!(
+                "The 13-clock float slab tester in E", stringify!($e), "M", stringify!($m),
+                " (`rtl::slab::float::SLAB_FLOAT_CUTS_DEEP`)."
+            )]
+            pub type $deep =
+                $crate::SlabFloat<$e, $m, $n, { $crate::slab::float::SLAB_FLOAT_CUTS_DEEP }>;
+        )*
+
+        /// The float formats of the main job, `export::catalog` and the synthesis report (the rows of
+        /// `slab_float_presets!`); every format of [`SLAB_FLOAT_LADDER`] has a default-depth block.
+        pub const SLAB_FLOAT_FORMATS: [golden::format::float::FloatFormat; [$($e),*].len()] =
+            [$(golden::format::float::FloatFormat { e: $e, m: $m }),*];
+    };
+}
+
+crate::slab_fix_presets!(__slab_fix_preset_items!());
+crate::slab_float_presets!(__slab_float_preset_items!());
+
+/// The float formats the stability study compares with the textbook test
+/// (`golden::stability::SLAB_FLOAT_FORMATS`, which cannot see this crate) are exactly the instantiated
+/// presets: the testbench runs that comparison on these blocks.
+const _: () = {
+    let (a, b) = (&SLAB_FLOAT_FORMATS, &golden::stability::SLAB_FLOAT_FORMATS);
+    assert!(a.len() == b.len());
+    let mut i = 0;
+    while i < a.len() {
+        assert!(a[i].e == b[i].e && a[i].m == b[i].m);
+        i += 1;
+    }
+};
+
+/// Runs `$body` with `$t` bound to the default `SlabFix` type of a preset format, or returns an error for
+/// a format without an instantiated block (const generics need the widths at compile time). `$body` is
+/// compiled once per preset.
 #[macro_export]
 macro_rules! with_slab_fix {
     ($fmt:expr, $t:ident, $body:block) => {{
         let f: &golden::format::fixed::FixFormat = $fmt;
-        if *f == golden::format::fixed::FixFormat::b8() {
-            type $t = $crate::SlabFixB8;
-            Ok($body)
-        } else if *f == golden::format::fixed::FixFormat::b12() {
-            type $t = $crate::SlabFixB12;
-            Ok($body)
-        } else if *f == golden::format::fixed::FixFormat::b16() {
-            type $t = $crate::SlabFixB16;
-            Ok($body)
-        } else {
-            Err(format!(
-                "no RTL instance for format {}: the RTL is instantiated for the presets b8, b12, b16 \
-                 (add a type alias in rtl/src/slab/registry.rs for another)",
-                f.name()
-            ))
-        }
+        $crate::slab_fix_presets!(__with_slab_fix_preset_arms!(f, $t, $body))
     }};
+}
+
+/// The dispatch arms of `with_slab_fix!` (callback of `slab_fix_presets!`).
+#[doc(hidden)]
+#[macro_export]
+macro_rules! __with_slab_fix_preset_arms {
+    ($f:ident, $t:ident, $body:block
+        [$(($p:ident, [$($w:literal),*], $alias:ident, $deep:ident)),* $(,)?]) => {
+        $crate::__fix_preset_arms!($f, $t, $body, "SlabFix",
+            "slab_fix_presets! in rtl/src/slab/registry.rs" [$(($p, $crate::$alias)),*])
+    };
 }
 
 /// Like `with_slab_fix!` for every format on the grid ladder
@@ -56,7 +138,7 @@ macro_rules! with_slab_fix_ladder {
     }};
 }
 
-/// The dispatch arms of `with_slab_fix!` (callback of `slab_fix_ladder!`).
+/// The dispatch arms of `with_slab_fix_ladder!` (callback of `slab_fix_ladder!`).
 #[doc(hidden)]
 #[macro_export]
 macro_rules! __with_slab_fix_arms {
@@ -72,74 +154,32 @@ macro_rules! __with_slab_fix_arms {
             _ => Err(format!(
                 "no RTL instance for format {}: the RTL is instantiated for the grid ladder g6 .. g20 \
                  (golden::format::fixed::FixFormat::grid; b8, b12, b16 among them) \
-                 (add a type alias in rtl/src/slab/ladder.rs for another)",
+                 (add a row to slab_fix_ladder! in rtl/src/slab/ladder.rs for another)",
                 $f.name()
             )),
         }
     };
 }
 
-/// The float formats of the main job, `export::export_all` and the synthesis report: the five
-/// instantiated before the format ladder. Every format of [`SLAB_FLOAT_LADDER`] has a block.
-pub const SLAB_FLOAT_FORMATS: [golden::format::float::FloatFormat; 5] = [
-    golden::format::float::FloatFormat::FP32,
-    golden::format::float::FloatFormat::E8M15,
-    golden::format::float::FloatFormat::BF16,
-    golden::format::float::FloatFormat::FP16,
-    golden::format::float::FloatFormat { e: 6, m: 5 },
-];
-
-/// The 13-clock float slab tester in binary32 ([`super::float::SLAB_FLOAT_CUTS_DEEP`]: adders cut after the
-/// alignment and after the normalisation, multipliers after the raw and after the normalised product).
-pub type SlabFloatE8M23P13 =
-    super::float::SlabFloat<8, 23, 32, { super::float::SLAB_FLOAT_CUTS_DEEP }>;
-/// The 13-clock float slab tester in E8M15.
-pub type SlabFloatE8M15P13 =
-    super::float::SlabFloat<8, 15, 24, { super::float::SLAB_FLOAT_CUTS_DEEP }>;
-/// The 13-clock float slab tester in bfloat16.
-pub type SlabFloatE8M7P13 =
-    super::float::SlabFloat<8, 7, 16, { super::float::SLAB_FLOAT_CUTS_DEEP }>;
-/// The 13-clock float slab tester in binary16.
-pub type SlabFloatE5M10P13 =
-    super::float::SlabFloat<5, 10, 16, { super::float::SLAB_FLOAT_CUTS_DEEP }>;
-/// The 13-clock float slab tester in E6M5.
-pub type SlabFloatE6M5P13 =
-    super::float::SlabFloat<6, 5, 12, { super::float::SLAB_FLOAT_CUTS_DEEP }>;
-
-/// Runs `$body` with `$t` bound to the `SlabFloat` type of a float format, or returns an error for a
-/// format without an instantiated block.
+/// Runs `$body` with `$t` bound to the default `SlabFloat` type of a preset float format
+/// ([`SLAB_FLOAT_FORMATS`]), or returns an error for a format without an instantiated block.
 #[macro_export]
 macro_rules! with_slab_float {
     ($f:expr, $t:ident, $body:block) => {{
         let f: &golden::format::float::FloatFormat = $f;
-        match (f.e, f.m) {
-            (8, 23) => {
-                type $t = $crate::SlabFloatE8M23;
-                Ok($body)
-            }
-            (8, 15) => {
-                type $t = $crate::SlabFloatE8M15;
-                Ok($body)
-            }
-            (8, 7) => {
-                type $t = $crate::SlabFloatE8M7;
-                Ok($body)
-            }
-            (5, 10) => {
-                type $t = $crate::SlabFloatE5M10;
-                Ok($body)
-            }
-            (6, 5) => {
-                type $t = $crate::SlabFloatE6M5;
-                Ok($body)
-            }
-            _ => Err(format!(
-                "no RTL instance for float format {}: instantiated are e8m23, e8m15, e8m7, e5m10, e6m5 \
-                 (add a type alias in rtl/src/slab/registry.rs for another)",
-                f.name()
-            )),
-        }
+        $crate::slab_float_presets!(__with_slab_float_preset_arms!(f, $t, $body))
     }};
+}
+
+/// The dispatch arms of `with_slab_float!` (callback of `slab_float_presets!`).
+#[doc(hidden)]
+#[macro_export]
+macro_rules! __with_slab_float_preset_arms {
+    ($f:ident, $t:ident, $body:block
+        [$(($e:literal, $m:literal, $n:literal, $alias:ident, $deep:ident)),* $(,)?]) => {
+        $crate::__float_arms!($f, $t, $body, "SlabFloat",
+            "slab_float_presets! in rtl/src/slab/registry.rs" [$(($e, $m, $crate::$alias)),*])
+    };
 }
 
 /// Like `with_slab_float!` for every float format of the ladder
@@ -153,25 +193,13 @@ macro_rules! with_slab_float_ladder {
     }};
 }
 
-/// The dispatch arms of `with_slab_float!` (callback of `slab_float_ladder!`).
+/// The dispatch arms of `with_slab_float_ladder!` (callback of `slab_float_ladder!`).
 #[doc(hidden)]
 #[macro_export]
 macro_rules! __with_slab_float_arms {
     ($f:ident, $t:ident, $body:block
         [$(($e:literal, $m:literal, $n:literal, $alias:ident)),* $(,)?]) => {
-        match ($f.e, $f.m) {
-            $(
-                ($e, $m) => {
-                    type $t = $crate::$alias;
-                    Ok($body)
-                }
-            )*
-            _ => Err(format!(
-                "no RTL instance for float format {}: instantiated are the float ladder \
-                 (E5 M3..=10, E6 M3..=10, 12, 15, E8 M7, 10, 12, 15, 23; golden::format::float::FloatFormat::LADDER) \
-                 (add a type alias in rtl/src/slab/ladder.rs for another)",
-                $f.name()
-            )),
-        }
+        $crate::__float_arms!($f, $t, $body, "RTL",
+            "slab_float_ladder! in rtl/src/slab/ladder.rs" [$(($e, $m, $crate::$alias)),*])
     };
 }

@@ -169,10 +169,11 @@ mod tests {
 
     #[test]
     fn every_split_mutant_finds_its_site() {
-        let (module, text, _) = rtl::export::bundle_split_verilog()
+        let e = rtl::export::catalog()
             .into_iter()
-            .next()
+            .find(|e| matches!(e.family, rtl::export::Family::BundleSplit { .. }))
             .unwrap();
+        let (module, text) = (e.module.clone(), e.verilog());
         let v = split_proofs(&module, &text, false, true).unwrap();
         assert_eq!(v.len(), 4);
         for m in &v[1..] {

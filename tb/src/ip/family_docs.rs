@@ -1216,7 +1216,7 @@ mod tests {
     use crate::verilator::{parse_ports, Port};
     use rtl::export::{catalog, Exported, Family};
     use rtl::verilog::split_port;
-    use std::collections::{BTreeMap, BTreeSet, HashSet};
+    use std::collections::{BTreeSet, HashSet};
 
     const CONTROL: [&str; 6] = ["clock", "rst", "valid_in", "tag_in", "valid_out", "tag_out"];
 
@@ -1234,30 +1234,19 @@ mod tests {
         })
     }
 
-    /// The catalogue's entries of these families with their ports, parsed from their Verilog (each
-    /// batch of modules generated once).
+    /// The catalogue's entries of these families with their ports, parsed from their Verilog.
     fn modules() -> Vec<(Exported, Vec<Port>)> {
         // The blocks are large values (every signal inline): build them on a big stack.
         crate::plane::float::with_big_stack(modules_here)
     }
 
     fn modules_here() -> Vec<(Exported, Vec<Port>)> {
-        let mut batch: BTreeMap<String, String> = BTreeMap::new();
-        for (m, v, _) in rtl::export::plane_verilog()
-            .into_iter()
-            .chain(rtl::export::bundle_fix_verilog())
-            .chain(rtl::export::bundle_split_verilog())
-            .chain(rtl::export::bundle_stream_verilog())
-            .chain(rtl::export::bundle_stream_float_verilog())
-        {
-            batch.insert(m, v);
-        }
         let mut out = vec![];
         for e in catalog() {
             if doc_of(&e).is_none() {
                 continue;
             }
-            let v = batch.get(&e.module).cloned().unwrap_or_else(|| e.verilog());
+            let v = e.verilog();
             let ports =
                 parse_ports(&v, &e.module).unwrap_or_else(|err| panic!("{}: {err}", e.module));
             out.push((e, ports));

@@ -5,8 +5,8 @@
 
 use golden::format::fixed::FixFormat;
 use golden::slab::gen::GenKind;
-use rtl::export::{slab_fix_deep_verilog, slab_fix_verilog_of};
-use rtl::names::{slab_fix_module, slab_fix_module_cuts};
+use rtl::export::{catalog, slab_fix_verilog_of, Family};
+use rtl::names::slab_fix_module_cuts;
 use rtl::slab::fix::SlabFixIo;
 use rust_hdl::prelude::Block;
 use std::path::PathBuf;
@@ -15,16 +15,13 @@ use tb::slab::ports::xsim;
 
 /// `(module, Verilog, path)` of every exported fixed slab tester: the presets at 4 and at 6 clocks.
 fn every_module() -> Vec<(String, String, PathBuf)> {
-    let mut all = vec![];
-    for fmt in FixFormat::presets() {
-        let v = rtl::export::slab_fix_verilog(&fmt).unwrap();
-        all.push((slab_fix_module(&fmt), v));
-    }
-    all.extend(slab_fix_deep_verilog().into_iter().map(|(m, v, _)| (m, v)));
-    all.into_iter()
-        .map(|(m, v)| {
-            let path = tb::verilog_tools::write(&v, &m);
-            (m, v, path)
+    catalog()
+        .into_iter()
+        .filter(|e| matches!(e.family, Family::SlabFix { .. }))
+        .map(|e| {
+            let v = e.verilog();
+            let path = tb::verilog_tools::write(&v, &e.module);
+            (e.module, v, path)
         })
         .collect()
 }
