@@ -4,7 +4,6 @@
 use crate::scene::Scene;
 use golden::exact::{slab_exact, ExactHit, Ext};
 use golden::format::fixed::{FixFormat, GridMap};
-use golden::slab::check::Verdict;
 use golden::slab::float::{quantize_box, quantize_ray};
 use golden::slab::reference::slab_ref;
 use std::fmt::Write as _;
@@ -123,23 +122,14 @@ fn measure<C: TesterCtx>(
         rtl_rate: rtl_n as f64 / t.elapsed().as_secs_f64(),
     };
     let (mut slack_sum, mut slack_n) = (0.0, 0u64);
+    let mut st = tb::campaign::ConservativeStats::default();
     for i in 0..n {
         let (r, o) = (&rays[i / nb], &model[i]);
         let (hit, en, ex) = ctx.world(r, o);
         row.hits += hit as u64;
-        match ctx.judge(r, o, &exact[i]) {
-            Verdict::Agree => {}
-            Verdict::FalseHit => row.false_hits += 1,
-            Verdict::Violation(why) => {
-                row.violations += 1;
-                eprintln!(
-                    "VIOLATION {}: ray {} box {}: {why}",
-                    row.name,
-                    i / nb,
-                    i % nb
-                );
-            }
-        }
+        st.record(hit, ctx.judge(r, o, &exact[i]), |why| {
+            format!("ray {} box {}: {why}", i / nb, i % nb)
+        });
         if exact[i].hit && hit {
             let s = (world(&exact[i].entry) - en) + (ex - world(&exact[i].exit));
             if s.is_finite() {
@@ -147,6 +137,10 @@ fn measure<C: TesterCtx>(
                 slack_n += 1;
             }
         }
+    }
+    (row.false_hits, row.violations) = (st.false_hits, st.violation_count);
+    for v in &st.violations {
+        eprintln!("VIOLATION {}: {v}", row.name);
     }
     row.mean_slack = slack_sum / slack_n.max(1) as f64;
     Ok(row)

@@ -170,6 +170,23 @@ impl ConservativeStats {
         self.violations.extend(o.violations);
         self.violations.truncate(10);
     }
+    /// Tallies one judged test: `hit` is the datapath's answer and `v` the verdict of the judge against
+    /// the exact oracle (a violation counts as a true hit, since the oracle hits); `describe(why)` words
+    /// a violation for the report and is called for the first ten only.
+    pub fn record(&mut self, hit: bool, v: Verdict, describe: impl FnOnce(&str) -> String) {
+        self.vectors += 1;
+        match v {
+            Verdict::Agree => self.true_hits += hit as u64,
+            Verdict::FalseHit => self.false_hits += 1,
+            Verdict::Violation(why) => {
+                self.true_hits += 1;
+                self.violation_count += 1;
+                if self.violations.len() < 10 {
+                    self.violations.push(describe(&why));
+                }
+            }
+        }
+    }
     /// False hits per true miss.
     pub fn false_hit_rate(&self) -> f64 {
         self.false_hits as f64 / (self.vectors - self.true_hits).max(1) as f64
@@ -201,19 +218,9 @@ pub fn judge_campaign(
                     let gen = SlabGen::new(kind, lo, hi, cell, seed.wrapping_add(k));
                     for (i, (r, b)) in gen.take(share as usize).enumerate() {
                         let (hit, v, what) = judge(&r, &b);
-                        st.vectors += 1;
-                        match v {
-                            Verdict::Agree => st.true_hits += hit as u64,
-                            Verdict::FalseHit => st.false_hits += 1,
-                            Verdict::Violation(why) => {
-                                st.true_hits += 1;
-                                st.violation_count += 1;
-                                if st.violations.len() < 10 {
-                                    st.violations
-                                        .push(format!("{why}\n  ray {r:?}\n  box {b:?}\n  {what}"));
-                                }
-                            }
-                        }
+                        st.record(hit, v, |why| {
+                            format!("{why}\n  ray {r:?}\n  box {b:?}\n  {what}")
+                        });
                         if i % 4096 == 4095 {
                             progress(4096);
                         }
