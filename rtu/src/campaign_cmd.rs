@@ -16,12 +16,17 @@ pub struct Args {
     /// Vectors per format and generator (conservativeness) and per format (cross-simulation).
     #[arg(long, default_value_t = 10_000_000)]
     vectors: u64,
-    /// Fixed-point formats, comma-separated presets (b8,b12,b16); empty for none.
-    #[arg(long, default_value = "b8,b12,b16")]
-    formats: String,
-    /// Float formats, comma-separated (fp32,e8m15,bf16,fp16,e6m5); empty for none.
-    #[arg(long, default_value = "fp32,e8m15,bf16,fp16,e6m5")]
-    float_formats: String,
+    /// Fixed-point formats, comma-separated presets (b8,b12,b16); empty for none (also `--formats`).
+    #[arg(long, alias = "formats", default_value = "b8,b12,b16")]
+    fixed: String,
+    /// Float formats, comma-separated (fp32,e8m15,bf16,fp16,e6m5); empty for none (also
+    /// `--float-formats`).
+    #[arg(
+        long,
+        alias = "float-formats",
+        default_value = "fp32,e8m15,bf16,fp16,e6m5"
+    )]
+    float: String,
     /// Seed of the first stream (the others are derived from it).
     #[arg(long, default_value_t = 1)]
     seed: u64,
@@ -112,8 +117,8 @@ impl Log {
 }
 
 pub fn run(a: &Args, out: &Path) -> Result<(), String> {
-    let fixed = crate::opts::fix_formats(&a.formats)?;
-    let floats = crate::opts::float_formats(&a.float_formats)?;
+    let fixed = crate::opts::fix_formats(&a.fixed)?;
+    let floats = crate::opts::float_formats(&a.float)?;
     let mut log = Log {
         csv: String::from("check,format,generator,vectors,true_hits,false_hits,false_hit_rate,violations,seconds,vectors_per_s\n"),
         failed: vec![],

@@ -101,12 +101,12 @@ pub fn run(
     let looks_float = lower.starts_with('e') || lower.starts_with("fp") || lower.starts_with("bf");
     let k = planes.unwrap_or(0);
     if k > MAX_VECTOR_PLANES {
-        return Err(format!("--planes {k}: at most {MAX_VECTOR_PLANES}"));
+        return Err(format!("--k {k}: at most {MAX_VECTOR_PLANES} planes"));
     }
     let too_many = move |v: &Vector| -> Result<(), golden::Error> {
         if v.planes.len() > k {
             return Err(golden::Error::Io(format!(
-                "{} planes, but the tester has {k} (--planes)",
+                "{} planes, but the tester has {k} (--k)",
                 v.planes.len()
             )));
         }
@@ -298,9 +298,10 @@ pub struct RunArgs {
     pub format: String,
     /// Run the chained slab + cull-plane tester with this many planes per node (0 to 8; the rtl and
     /// verilator engines take 1 to 8 with b8, b12, b16 and 1, 2, 4 with fp16, bf16, fp32); each
-    /// vector's planes (`planes` in JSON, `p0_nx..p7_w` in CSV) are fitted outward into the format.
-    #[arg(long)]
-    pub planes: Option<usize>,
+    /// vector's planes (`planes` in JSON, `p0_nx..p7_w` in CSV) are fitted outward into the format
+    /// (also `--planes`).
+    #[arg(long, alias = "planes")]
+    pub k: Option<usize>,
     /// Fixed formats: scene bounds `x0,y0,z0,x1,y1,z1` for the grid; by default the bounds of the file's
     /// origins and boxes.
     #[arg(long)]
@@ -318,8 +319,8 @@ pub struct RunArgs {
 /// ([`crate::run_bundles::run`]).
 pub fn run_cmd(a: &RunArgs, out: &Path) -> Result<(), String> {
     if a.bundles {
-        if a.planes.is_some() {
-            return Err("--bundles does not take --planes".to_string());
+        if a.k.is_some() {
+            return Err("--bundles does not take --k (planes per node)".to_string());
         }
         let grid = a.bounds.as_deref().map(parse_bounds).transpose()?;
         return crate::run_bundles::run(
@@ -336,7 +337,7 @@ pub fn run_cmd(a: &RunArgs, out: &Path) -> Result<(), String> {
         a.output.as_deref(),
         a.engine,
         &a.format,
-        a.planes,
+        a.k,
         a.bounds.as_deref(),
         a.vcd.as_deref(),
         out,
@@ -348,8 +349,9 @@ pub fn run_cmd(a: &RunArgs, out: &Path) -> Result<(), String> {
 pub struct GenArgs {
     #[arg(long, default_value = "mixed")]
     pub kind: golden::slab::gen::GenKind,
-    #[arg(long, short, default_value_t = 1000)]
-    pub n: u64,
+    /// Vectors to write (also `--n`).
+    #[arg(long, short = 'n', alias = "n", default_value_t = 1000)]
+    pub vectors: u64,
     #[arg(long, default_value_t = 1)]
     pub seed: u64,
     /// Output file (`.csv` for CSV); stdout when absent.
@@ -359,5 +361,5 @@ pub struct GenArgs {
 
 /// `rtu gen`: [`gen`] with its options.
 pub fn gen_cmd(a: &GenArgs) -> Result<(), String> {
-    gen(a.kind, a.n, a.seed, a.output.as_deref())
+    gen(a.kind, a.vectors, a.seed, a.output.as_deref())
 }

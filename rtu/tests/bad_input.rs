@@ -388,3 +388,32 @@ fn bundle_stream_options_out_of_range_are_errors() {
         assert!(d.entries().is_empty(), "{args:?}: {:?}", d.entries());
     }
 }
+
+/// The commands share one set of option names (`--fixed`/`--float` for format lists, `--k` for planes per
+/// node, `--vectors` for counts); the older spellings still parse as aliases, and either way a bad value
+/// is an error naming it.
+#[test]
+fn shared_option_names_and_their_old_aliases_name_a_bad_value() {
+    let d = Dir::new("option-names");
+    let out = d.0.display().to_string();
+    for (args, want) in [
+        (vec!["campaign", "--fixed", "b99"], "`b99`"),
+        (vec!["campaign", "--formats", "b99"], "`b99`"),
+        (vec!["campaign", "--fixed", "", "--float", "e9m99"], "e9m99"),
+        (
+            vec!["campaign", "--fixed", "", "--float-formats", "e9m99"],
+            "e9m99",
+        ),
+        (vec!["run", "-", "--k", "9"], "--k 9"),
+        (vec!["run", "-", "--planes", "9"], "--k 9"),
+        (vec!["gen", "--vectors", "x"], "--vectors"),
+    ] {
+        let mut a = vec!["--out", &out];
+        a.extend(&args);
+        let o = rtu(&a);
+        let err = String::from_utf8_lossy(&o.stderr);
+        assert!(!o.status.success(), "{args:?} must fail");
+        assert!(err.contains(want), "{args:?}: {err}");
+        assert!(d.entries().is_empty(), "{args:?}: {:?}", d.entries());
+    }
+}

@@ -107,7 +107,7 @@ fn roundtrip() {
         ("slab_float_e5m10_p13", &["--format", "fp16"][..]),
         (
             "plane_fix_g12_i16f11_t20f6_n8_fd11_r8_k1",
-            &["--format", "b12", "--planes", "1"][..],
+            &["--format", "b12", "--k", "1"][..],
         ),
     ] {
         let (_, decoded) = through_verilator(&d, module, &v);

@@ -141,6 +141,7 @@ impl FloatFormat {
         let rest = l.strip_prefix('e').ok_or_else(bad)?;
         let (e, m) = rest.split_once('m').ok_or_else(bad)?;
         Self::new(e.parse().map_err(|_| bad())?, m.parse().map_err(|_| bad())?)
+            .map_err(|e| Error::Io(format!("float format `{s}`: {e}")))
     }
 
     /// Name used in module names and reports, e.g. `e8m23`.
@@ -562,6 +563,16 @@ impl FloatFormat {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    /// A name that reads as a format but has a parameter out of range is an error naming the input, as a
+    /// name that does not read as one is.
+    #[test]
+    fn a_bad_format_name_is_an_error_naming_it() {
+        for (s, why) in [("e9m99", "exponent bits"), ("e5m30", "fraction bits"), ("xyz", "expected")] {
+            let e = FloatFormat::parse(s).unwrap_err().to_string();
+            assert!(e.contains(&format!("`{s}`")) && e.contains(why), "{s}: {e}");
+        }
+    }
 
     #[test]
     fn ladder_is_valid_sorted_and_holds_the_instantiated_formats() {

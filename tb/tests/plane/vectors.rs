@@ -1,4 +1,4 @@
-//! Vector I/O of the cull-plane testers (`rtu run --planes K`): users' world vectors with planes, written
+//! Vector I/O of the cull-plane testers (`rtu run --k K`): users' world vectors with planes, written
 //! and read back through the vector file format, quantised by `fix_vector` / `float_vector` (planes fitted
 //! outward to the part of the box they keep), are judged against the exact clip by the *world* planes —
 //! the contract the user sees — and the model, rust-hdl and Verilator engines give the same results.
