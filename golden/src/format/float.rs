@@ -568,7 +568,11 @@ mod tests {
     /// name that does not read as one is.
     #[test]
     fn a_bad_format_name_is_an_error_naming_it() {
-        for (s, why) in [("e9m99", "exponent bits"), ("e5m30", "fraction bits"), ("xyz", "expected")] {
+        for (s, why) in [
+            ("e9m99", "exponent bits"),
+            ("e5m30", "fraction bits"),
+            ("xyz", "expected"),
+        ] {
             let e = FloatFormat::parse(s).unwrap_err().to_string();
             assert!(e.contains(&format!("`{s}`")) && e.contains(why), "{s}: {e}");
         }
