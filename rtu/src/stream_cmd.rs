@@ -72,15 +72,8 @@ fn replay<S: BundleStreamIo>(
 pub fn run(a: &Args, out: &Path) -> Result<String, String> {
     if let Ok(f) = FloatFormat::parse(&a.format) {
         let name = f.name();
-        return match f {
-            FloatFormat::FP32 => measure(a, &f, &name, out, replay::<rtl::BundleStreamFp32>),
-            FloatFormat::BF16 => measure(a, &f, &name, out, replay::<rtl::BundleStreamBf16>),
-            FloatFormat::FP16 => measure(a, &f, &name, out, replay::<rtl::BundleStreamFp16>),
-            _ => Err(format!(
-                "--format {}: the float processor is built in fp32, bf16 and fp16",
-                a.format
-            )),
-        };
+        return rtl::with_bundle_stream_float!(&f, S, { measure(a, &f, &name, out, replay::<S>) })
+            .map_err(|e| format!("--format {}: {e}", a.format))?;
     }
     let fmt = FixFormat::parse(&a.format).map_err(|e| format!("--format {}: {e}", a.format))?;
     let bf = BundleFixFormat::over(fmt).map_err(|e| e.to_string())?;

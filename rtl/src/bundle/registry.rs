@@ -3,8 +3,8 @@
 //! processor around either pair) and [`bundle_float_presets!`](crate::bundle_float_presets) (in binary32,
 //! bfloat16 and binary16: the float pair at 9 and 13 clocks and the streaming processor around either).
 //! From each table come the type aliases, the format list and the dispatch below (`with_bundle_float!`,
-//! `with_bundle_split!`, `with_bundle_stream!`), so a format is added by one row. Which of them are
-//! exported is the export catalogue's choice (`rtl/src/export.rs`).
+//! `with_bundle_stream_float!`, `with_bundle_split!`, `with_bundle_stream!`), so a format is added by one
+//! row. Which of them are exported is the export catalogue's choice (`rtl/src/export.rs`).
 
 /// Calls `$crate::$cb!(args... [(preset, [G, V, D, T], Pair, PairP5, Split, Stream, StreamP5), ...])` with
 /// the fixed bundle blocks over the presets (`golden::bundle::fix::BundleFixFormat::presets()`, named by
@@ -133,18 +133,35 @@ crate::bundle_float_presets!(__bundle_float_preset_items!());
 macro_rules! with_bundle_float {
     ($f:expr, $t:ident, $body:block) => {{
         let f: &golden::format::float::FloatFormat = $f;
-        $crate::bundle_float_presets!(__with_bundle_float_arms!(f, $t, $body))
+        $crate::bundle_float_presets!(__with_bundle_float_arms!(f, pair, $t, $body))
     }};
 }
 
-/// The dispatch arms of `with_bundle_float!` (callback of `bundle_float_presets!`).
+/// Runs `$body` with `$t` bound to the streaming processor around the default (9-clock) float pair
+/// (`BundleStreamFloat`) of a float format, or returns an error for a format without an instantiated
+/// block.
+#[macro_export]
+macro_rules! with_bundle_stream_float {
+    ($f:expr, $t:ident, $body:block) => {{
+        let f: &golden::format::float::FloatFormat = $f;
+        $crate::bundle_float_presets!(__with_bundle_float_arms!(f, stream, $t, $body))
+    }};
+}
+
+/// The dispatch arms of `with_bundle_float!` and `with_bundle_stream_float!` (callback of
+/// `bundle_float_presets!`; `pair` or `stream` picks the column).
 #[doc(hidden)]
 #[macro_export]
 macro_rules! __with_bundle_float_arms {
-    ($f:ident, $t:ident, $body:block
+    ($f:ident, pair, $t:ident, $body:block
         [$(($name:ident, $e:literal, $m:literal, $n:literal, $pair:ident, $pair13:ident, $stream:ident, $stream13:ident)),* $(,)?]) => {
         $crate::__float_arms!($f, $t, $body, "BundleFloat",
             "bundle_float_presets! in rtl/src/bundle/registry.rs" [$(($e, $m, $crate::$pair)),*])
+    };
+    ($f:ident, stream, $t:ident, $body:block
+        [$(($name:ident, $e:literal, $m:literal, $n:literal, $pair:ident, $pair13:ident, $stream:ident, $stream13:ident)),* $(,)?]) => {
+        $crate::__float_arms!($f, $t, $body, "BundleStreamFloat (streaming processor)",
+            "bundle_float_presets! in rtl/src/bundle/registry.rs" [$(($e, $m, $crate::$stream)),*])
     };
 }
 
