@@ -525,7 +525,7 @@ fn judge_cull(
 }
 
 /// Our cull-plane models on a case (planes fitted outward to the part of the box on their non-empty side,
-/// as `rtu run --planes` does); an error when one is not conservative.
+/// as `rtu run --k` does); an error when one is not conservative.
 pub fn cull_ours(c: &CullCase) -> Result<Vec<String>, Error> {
     use crate::plane::fix::{self as pf, CullFixFormat, FixNode, NodeFixRay};
     use crate::plane::float::{self as pl, CullFloatFormat, FloatNode, NodeFloatRay};

@@ -147,18 +147,6 @@ pub fn bundle_split_module(bf: &BundleFixFormat) -> String {
     format!("bundle_split_{}_n{SPLIT_RAYS}", bf.name())
 }
 
-/// Module name of the streaming processor over `bf` with the pair's cut points `cuts`, e.g.
-/// `bundle_stream_g12_i16f11_t20f6_d10_n16x4` (the default pair) or `..._d10_p5_n16x4`.
-pub fn bundle_stream_module_cuts(bf: &BundleFixFormat, cuts: usize) -> String {
-    bundle_stream_name(&bf.name(), &BUNDLE_FIX_DEPTHS, cuts)
-}
-
-/// Module name of the float streaming processor for a format and the pair's cut points, e.g.
-/// `bundle_stream_e5m10_n16x4` (the 9-clock pair) or `bundle_stream_e5m10_p13_n16x4`.
-pub fn bundle_stream_float_module(f: &FloatFormat, cuts: usize) -> String {
-    bundle_stream_name(&f.name(), &BUNDLE_FLOAT_DEPTHS, cuts)
-}
-
 /// A streaming processor's name: its format's name, the depth of the pair inside (from the pair's list
 /// of built depths `depths`), and the ray store's shape.
 fn bundle_stream_name(format: &str, depths: &[(usize, &str)], cuts: usize) -> String {
@@ -176,7 +164,10 @@ pub fn bundle_float_of<S: BundleFloatIo>() -> String {
     bundle_float_module_cuts(&S::format(), S::CUTS)
 }
 
-/// Module name of the streaming processor `S` over `dp` (fixed or float), from the pair's cut points.
+/// Module name of the streaming processor `S` over `dp` (fixed or float), from the pair's cut points, e.g.
+/// `bundle_stream_g12_i16f11_t20f6_d10_n16x4` (around the default fixed pair),
+/// `bundle_stream_g12_i16f11_t20f6_d10_p5_n16x4` (around the 5-clock one) or
+/// `bundle_stream_e5m10_p13_n16x4` (around the 13-clock float pair).
 pub fn bundle_stream_of<S: BundleStreamIo>(dp: &S::Dp) -> String {
     bundle_stream_name(&S::format_name(dp), S::PAIR_DEPTHS, S::CUTS)
 }

@@ -138,6 +138,7 @@ fn measure<C: TesterCtx>(
             }
         }
     }
+    // The row counts every violation; the first ten are printed, as the campaign reports them.
     (row.false_hits, row.violations) = (st.false_hits, st.violation_count);
     for v in &st.violations {
         eprintln!("VIOLATION {}: {v}", row.name);

@@ -180,7 +180,8 @@ where
 }
 
 /// Runs `tests` on the float chained slab + cull-plane tester of `ctx` (any format and `K` for the
-/// model; the instantiated ones for rtl and verilator: e5m10, e8m7, e8m23 with 1, 2 or 4 planes).
+/// model; the instantiated ones for rtl and verilator: e5m10 with 1, 2, 4 or 8 planes, e8m7 and
+/// e8m23 with 1, 2 or 4: `rtl::PLANE_FLOAT_CONFIGS`).
 /// Runs on a thread with a large stack (a `PlaneFloat` block is a large value).
 pub fn run_cull_float<K, It, F>(
     engine: Engine,

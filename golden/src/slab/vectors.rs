@@ -8,7 +8,7 @@
 //! CSV with this header (any column order):
 //! `tag,ox,oy,oz,dx,dy,dz,t_min,t_max,min_x,min_y,min_z,max_x,max_y,max_z`.
 //!
-//! Cull planes (the cull-plane tester, `rtu run --planes K`): JSON `"planes": [[nx, ny, nz, w], ...]`, CSV
+//! Cull planes (the cull-plane tester, `rtu run --k K`): JSON `"planes": [[nx, ny, nz, w], ...]`, CSV
 //! columns `p0_nx,p0_ny,p0_nz,p0_w` up to `p7_...` (a plane whose four cells are empty is absent). A plane
 //! is a world half-space relative to the box centroid `c`: the node's geometry lies where
 //! `n . (x - c) <= w` ([`crate::plane::clip::Plane`]); at most [`MAX_VECTOR_PLANES`], each with a finite

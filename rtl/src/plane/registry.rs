@@ -6,12 +6,13 @@
 //! row. Which of them are exported (1 and 4 planes) is the export catalogue's choice
 //! (`rtl/src/export.rs`).
 
-/// Calls `$crate::$cb!(args... [(preset, [G, D, I, T, N, DB, WB, SB, EB], Alias, DeepAlias, [QB, QW],
+/// Calls `$crate::$cb!(args... [(preset, [G, D, I, T, N, DB, WB, SB, EB], Alias, DeepAlias, [MB, FB],
 /// QuotAlias), ...])` with the fixed cull-plane testers over the presets
 /// (`golden::format::fixed::FixFormat::b8()`, ...; `golden::plane::fix::CullFixFormat::over` gives the
-/// plane format, `N = 8` and `FD = G - 1`): `Alias<K>` is the table option `PlaneFix<G, .., EB, K>` at the
-/// default depth, `DeepAlias<K>` the same at the 11-clock depth (`rtl::plane::fix::PLANE_FIX_DEEP`), and
-/// `QuotAlias<K>` the quotient option `PlaneQuot<G, .., EB, QB, QW, K>`.
+/// plane format, `N = 8` and `FD = FI`: 8, 11, 14): `Alias<K>` is the table option
+/// `PlaneFix<G, .., EB, K>` at the default depth, `DeepAlias<K>` the same at the 11-clock depth
+/// (`rtl::plane::fix::PLANE_FIX_DEEP`), and `QuotAlias<K>` the quotient option
+/// `PlaneQuot<G, .., EB, MB, FB, K>`.
 #[doc(hidden)]
 #[macro_export]
 macro_rules! plane_fix_presets {

@@ -114,7 +114,7 @@ macro_rules! __slab_float_ladder_items {
             pub type $alias = $crate::SlabFloat<$e, $m, $n>;
         )*
 
-        /// The float formats with an instantiated float slab tester (`with_slab_float!`), in the order of
+        /// The float formats with an instantiated float slab tester (`with_slab_float_ladder!`), in the order of
         /// `golden::format::float::FloatFormat::LADDER`, narrowest first. [`crate::SLAB_FLOAT_FORMATS`] is the
         /// five of them that the main job, `export_all` and the synthesis report use.
         pub const SLAB_FLOAT_LADDER: &[golden::format::float::FloatFormat] =
