@@ -206,7 +206,7 @@ pub fn slab_fix<S: SlabFixIo + 'static>(fmt: FixFormat) -> Exported {
         names::slab_fix_module_cuts(&fmt, S::CUTS),
         S::LATENCY,
         Family::SlabFix { fmt, cuts: S::CUTS },
-        move |m| verilog_named(&mut S::for_format(&fmt), m),
+        move |_| slab_fix_verilog_of::<S>(&fmt),
     )
 }
 
@@ -217,7 +217,7 @@ pub fn slab_float<S: SlabFloatIo + 'static>() -> Exported {
         names::slab_float_module_cuts(&f, S::CUTS),
         S::LATENCY,
         Family::SlabFloat { f, cuts: S::CUTS },
-        |m| verilog_named(&mut S::make(), m),
+        |_| slab_float_verilog_of::<S>(),
     )
 }
 
@@ -274,7 +274,7 @@ pub fn bundle_float<S: BundleFloatIo + 'static>() -> Exported {
         names::bundle_float_of::<S>(),
         S::LATENCY,
         Family::BundleFloat { f, cuts: S::CUTS },
-        move |m| verilog_named(Box::new(S::for_format(&f)).as_mut(), m),
+        |_| bundle_float_verilog_of::<S>(),
     )
 }
 

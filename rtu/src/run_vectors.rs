@@ -297,8 +297,8 @@ pub struct RunArgs {
     #[arg(long, default_value = "b16")]
     pub format: String,
     /// Run the chained slab + cull-plane tester with this many planes per node (0 to 8; the rtl and
-    /// verilator engines take 1 to 8 with b8, b12, b16, 1, 2, 4, 8 with fp16 and 1, 2, 4 with bf16, fp32); each
-    /// vector's planes (`planes` in JSON, `p0_nx..p7_w` in CSV) are fitted outward into the format
+    /// verilator engines take 1 to 8 with b8, b12, b16, 1, 2, 4, 8 with fp16 and 1, 2, 4 with bf16,
+    /// fp32); each vector's planes (`planes` in JSON, `p0_nx..p7_w` in CSV) are fitted outward into the format
     /// (also `--planes`).
     #[arg(long, alias = "planes")]
     pub k: Option<usize>,
