@@ -8,7 +8,7 @@
 //! | [`plane`] | the cull-plane testers, fixed (table and quotient options) and float | `golden::plane` |
 //! | [`bundle`] | the AllHit / AnyHit edge testers, the pairs and the results processor | `golden::bundle` |
 //!
-//! Shared: [`io`] (the testbench interface of the slab-shaped testers), [`cut`] (pipeline cut points and
+//! Shared: [`io`] (the port interface of every pipelined tester: [`io::TesterIo`], [`io::PortCodec`], [`tester_ports!`]), [`cut`] (pipeline cut points and
 //! waits), [`delay`], [`dispatch`] (the configuration tables' shared machinery), [`verilog`] (a block's Verilog text with plain names), [`names`] (every exported
 //! module's name, made in one place), [`export`] (Verilog export of every configuration and the catalogue
 //! of exported modules). Blocks import neither [`names`] nor [`export`]; those two read the blocks.

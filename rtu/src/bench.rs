@@ -14,7 +14,7 @@ use std::path::Path;
 use std::time::Instant;
 use tb::dut::PipelinedDut;
 use tb::rtl_sim::SlabFixRtl;
-use tb::slab::ports::in_word;
+use tb::xsim::in_word;
 
 #[derive(clap::Args)]
 pub struct Args {
@@ -128,7 +128,7 @@ pub fn run(a: &Args, out: &Path) -> Result<(), String> {
         &out.join("verilator"),
     )?;
     let build_s = tb_build.elapsed().as_secs_f64();
-    let ports: Vec<String> = h.inputs.iter().map(|p| p.name.clone()).collect();
+    let ports = &h.inputs;
     let recs: std::sync::Arc<Vec<Vec<u64>>> = std::sync::Arc::new(
         pool.iter()
             .enumerate()
@@ -158,7 +158,7 @@ pub fn run(a: &Args, out: &Path) -> Result<(), String> {
         let n = a.stream_tests * k;
         let vectors = tb::campaign::slab_vectors(fmt, GenKind::Mixed, 5, n, true);
         rtl::with_slab_fix!(&fmt, S, {
-            tb::slab::ports::xsim(fmt, || S::new(&fmt), &h, vectors, 0, |_| {})
+            tb::xsim::xsim(fmt, || S::new(&fmt), &h, vectors, 0, |_| {})
         })??;
         rss.push((n, peak_rss_kib().unwrap_or(0)));
     }

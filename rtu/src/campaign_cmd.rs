@@ -9,7 +9,7 @@ use std::fmt::Write as _;
 use std::path::Path;
 use std::time::Instant;
 use tb::campaign::{conservative_campaign, float_campaign, slab_vectors, ConservativeStats};
-use tb::slab::ports::{xsim, XsimStats};
+use tb::xsim::{xsim, XsimStats};
 
 #[derive(clap::Args)]
 pub struct Args {

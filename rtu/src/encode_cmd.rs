@@ -20,11 +20,12 @@ use golden::slab::vectors::{write_header, write_result, VecFormat, Vector};
 use rtl::export::{Exported, Family};
 use std::path::{Path, PathBuf};
 use std::sync::Arc;
+use tb::bundle::pair_float::PairFloatCtx;
 use tb::ip::words;
 use tb::plane::fix::{fix_vector, CullFixCtx};
 use tb::plane::float::{float_vector, CullFloatCtx};
-use tb::slab::ports::TesterCtx;
 use tb::verilator::{parse_ports, Port};
+use tb::xsim::{in_row, out_of_row, out_row, BlockCtx, TesterCtx};
 
 /// Options of `rtu encode`.
 #[derive(clap::Args)]
@@ -288,8 +289,8 @@ fn slab_rows(s: &Setup) -> Result<(Vec<Vec<u64>>, Vec<Vec<u64>>), String> {
         let mut ro = Vec::with_capacity(tests.len());
         for (n, (r, b)) in tests.iter().enumerate() {
             let tag = tb::ip::seq_tag(n);
-            ri.push(tb::ip::slab_in_row(&ctx, &ins, tag, r, b)?);
-            ro.push(tb::ip::slab_out_row(&ctx, &outs, tag, &ctx.model(r, b))?);
+            ri.push(in_row(&ctx, &ins, tag, r, b)?);
+            ro.push(out_row(&ctx, &outs, tag, &ctx.model(r, b))?);
         }
         (ri, ro)
     }))
@@ -310,7 +311,7 @@ fn slab_results(
         for (n, ((line, row), ((_, v), (r, _)))) in
             rows.iter().zip(s.vs.iter().zip(&tests)).enumerate()
         {
-            let (tag, o) = tb::ip::slab_out_of_row(&ctx, &outs, row)?;
+            let (tag, o) = out_of_row(&ctx, &outs, row)?;
             check_tag(csrc, *line, tag, n, v.tag)?;
             let (hit, en, ex) = ctx.world(r, &o);
             write_result(w, s.vfmt, v.tag, hit, en, ex).map_err(&werr)?;
@@ -575,7 +576,7 @@ fn bundle_rows(b: &BundleSetup) -> Result<(Vec<Vec<u64>>, Vec<Vec<u64>>), String
     let mut ro = vec![];
     for (n, (line, v)) in b.vs.iter().enumerate() {
         let tag = tb::ip::seq_tag(n);
-        let (row, (all_hit, all_miss)) = match b.e.family {
+        let (row_in, row_out) = match b.e.family {
             Family::BundleFix { bf, .. } => {
                 let map = b.map.expect("a grid for a fixed format");
                 let q = (|| {
@@ -587,11 +588,11 @@ fn bundle_rows(b: &BundleSetup) -> Result<(Vec<Vec<u64>>, Vec<Vec<u64>>), String
                     ))
                 })()
                 .map_err(|e| at(*line, v.tag, e))?;
-                let row = ins
-                    .iter()
-                    .map(|p| tb::bundle::pair_fix::bundle_in_word(&bf, &p.name, tag, &Some(q)))
-                    .collect::<Result<Vec<_>, _>>()?;
-                (row, tb::bundle::pair_fix::bundle_model(&bf, &q))
+                let out = bf.model(&q.0, &q.1);
+                (
+                    in_row(&bf, &ins, tag, &q.0, &q.1)?,
+                    out_row(&bf, &outs, tag, &out)?,
+                )
             }
             Family::BundleFloat { f, .. } => {
                 let q = (|| {
@@ -603,25 +604,17 @@ fn bundle_rows(b: &BundleSetup) -> Result<(Vec<Vec<u64>>, Vec<Vec<u64>>), String
                     ))
                 })()
                 .map_err(|e| at(*line, v.tag, e))?;
-                let row = ins
-                    .iter()
-                    .map(|p| tb::bundle::pair_float::bundle_float_in_word(&p.name, tag, &Some(q)))
-                    .collect::<Result<Vec<_>, _>>()?;
-                (row, tb::bundle::pair_float::bundle_float_model(&f, &q))
+                let ctx = PairFloatCtx(f);
+                let out = ctx.model(&q.0, &q.1);
+                (
+                    in_row(&ctx, &ins, tag, &q.0, &q.1)?,
+                    out_row(&ctx, &outs, tag, &out)?,
+                )
             }
             _ => unreachable!("is_bundle"),
         };
-        ri.push(row);
-        ro.push(
-            outs.iter()
-                .map(|p| match p.name.as_str() {
-                    "tag_out" => Ok(tag as u64),
-                    "all_hit" => Ok(all_hit as u64),
-                    "all_miss" => Ok(all_miss as u64),
-                    other => Err(format!("unknown output port {other}")),
-                })
-                .collect::<Result<Vec<_>, _>>()?,
-        );
+        ri.push(row_in);
+        ro.push(row_out);
     }
     Ok((ri, ro))
 }
@@ -650,16 +643,15 @@ fn bundle_results(
 ) -> Result<(), String> {
     let outs = words::columns(&b.ports, false);
     for (n, ((line, row), (_, v))) in rows.iter().zip(&b.vs).enumerate() {
-        let word = |name: &str| {
-            outs.iter()
-                .position(|p| p.name == name)
-                .map(|k| row[k])
-                .ok_or_else(|| format!("no output port {name}"))
+        let (tag, (all_hit, all_miss)) = match b.e.family {
+            Family::BundleFix { bf, .. } => out_of_row(&bf, &outs, row)?,
+            Family::BundleFloat { f, .. } => out_of_row(&PairFloatCtx(f), &outs, row)?,
+            _ => unreachable!("is_bundle"),
         };
-        check_tag(csrc, *line, word("tag_out")? as u16, n, v.tag)?;
+        check_tag(csrc, *line, tag, n, v.tag)?;
         let r = golden::bundle::vectors::BundleResult {
-            all_hit: word("all_hit")? != 0,
-            all_miss: word("all_miss")? != 0,
+            all_hit,
+            all_miss,
             rays: None,
         };
         golden::bundle::vectors::write_bundle_result(w, v.tag, &r).map_err(&werr)?;

@@ -10,7 +10,7 @@ use std::fmt::Write as _;
 use std::path::Path;
 use std::time::Instant;
 use tb::engine::{run_fix, run_float, Engine};
-use tb::slab::ports::TesterCtx;
+use tb::xsim::TesterCtx;
 
 /// One row of the summary.
 pub struct Row {

@@ -18,7 +18,7 @@ use std::sync::{Arc, Mutex};
 use tb::engine::{run_cull_fix, run_cull_float, run_fix, run_float, Engine};
 use tb::plane::fix::{fix_vector, CullFixCtx};
 use tb::plane::float::{float_vector, CullFloatCtx};
-use tb::slab::ports::TesterCtx;
+use tb::xsim::TesterCtx;
 
 pub(crate) fn parse_bounds(s: &str) -> Result<(DVec3, DVec3), String> {
     let v: Vec<f64> = s

@@ -1,7 +1,7 @@
 //! Streamed vector sources and campaigns: conservativeness of the bit-accurate model against the exact
 //! oracle, and cross-simulation of the exported Verilog. Nothing is stored: memory stays flat.
 
-use crate::slab::ports::SlabVec;
+use crate::slab::ctx::SlabVec;
 use glam::DVec3;
 use golden::format::fixed::{FixBox, FixFormat, FixRay, GridMap};
 use golden::slab::check::{check_fix, Verdict};

@@ -6,7 +6,7 @@ use crate::dut::PipelinedDut;
 use crate::plane::fix::CullFixCtx;
 use crate::plane::float::CullFloatCtx;
 use crate::rtl_sim::TesterSim;
-use crate::slab::ports::{in_word, TesterCtx};
+use crate::xsim::{in_word, out_of_row, BlockCtx, TesterCtx};
 use golden::format::fixed::FixFormat;
 use golden::format::float::FloatFormat;
 use golden::plane::fix::{CullFixFormat, NodeFixRay, PlaneFixOut};
@@ -43,7 +43,7 @@ impl std::str::FromStr for Engine {
 }
 
 /// A test with the caller's own key `K` (returned with the result).
-pub type Keyed<K, C> = (K, <C as TesterCtx>::Ray, <C as TesterCtx>::Box);
+pub type Keyed<K, C> = (K, <C as BlockCtx>::Ray, <C as BlockCtx>::Box);
 
 /// Runs `tests` on the fixed tester of `fmt` (any format for the model; the presets for rtl and verilator).
 pub fn run_fix<K, It, F>(
@@ -310,7 +310,7 @@ where
                 return Err("a waveform (--vcd) needs the rtl engine".into());
             }
             let h = crate::verilator::build(&verilog()?, module, verilator_dir)?;
-            let ports: Vec<String> = h.inputs.iter().map(|p| p.name.clone()).collect();
+            let ports = h.inputs.clone();
             let (tx, rx) = sync_channel::<(K, C::Ray)>(1 << 16);
             let mut tag = 0u16;
             let records = tests
@@ -328,12 +328,7 @@ where
                     vec![0u64; h.inputs.len()],
                     S::LATENCY + 1,
                 )); // flush bubbles
-            let (iv, ih, ien, iex) = (
-                h.output_index("valid_out").ok_or("no valid_out")?,
-                h.output_index("hit").ok_or("no hit")?,
-                h.output_index("t_entry").ok_or("no t_entry")?,
-                h.output_index("t_exit").ok_or("no t_exit")?,
-            );
+            let iv = h.output_index("valid_out").ok_or("no valid_out")?;
             h.stream(records, |_, out| {
                 // The producer sends each test before the harness can see it; flush cycles send nothing.
                 if let Ok(x) = rx.try_recv() {
@@ -342,7 +337,7 @@ where
                 if out[iv] != 0 {
                     let (k, r) = waiting.pop_front().ok_or("a result with no test waiting")?;
                     n += 1;
-                    sink(k, &r, ctx.out_from_fields(out[ih] != 0, out[ien], out[iex]))?;
+                    sink(k, &r, out_of_row(&ctx, &h.outputs, out)?.1)?;
                 }
                 Ok(())
             })?;

@@ -4,12 +4,13 @@
 //!
 //! | module | what it does |
 //! | --- | --- |
-//! | [`slab::ports`] | the slab testers' port encoding and the cross-simulation loop, both datapaths ([`slab::ports::TesterCtx`]) |
+//! | [`xsim`] | what a testbench knows of a pipelined tester's configuration ([`xsim::BlockCtx`], [`xsim::TesterCtx`]), its port words through the block's codec (`rtl::io::PortCodec`), and the one cross-simulation loop of every pipelined tester |
+//! | [`slab::ctx`] | the slab testers' formats as testbench contexts, both datapaths |
 //! | [`slab::strategies`] | proptest strategies over quantised slab vectors |
-//! | [`plane::fix`] | the fixed cull-plane tester's port encoding, vector streams and the cull-plane campaigns |
-//! | [`plane::float`] | the float cull-plane tester's port encoding and vector streams |
-//! | [`bundle::pair_fix`] | the fixed bundle pair's vector streams, port encoding and cross-simulation loop |
-//! | [`bundle::pair_float`] | the float bundle pair's vector streams, port encoding and cross-simulation loop |
+//! | [`plane::fix`] | the fixed cull-plane tester's context, vector streams and the cull-plane campaigns |
+//! | [`plane::float`] | the float cull-plane tester's context and vector streams |
+//! | [`bundle::pair_fix`] | the fixed bundle pair's vector streams and context |
+//! | [`bundle::pair_float`] | the float bundle pair's vector streams and context |
 //! | [`bundle::split`] | the results processor's driver, clock-by-clock stimulus, checker and cross-simulation |
 //! | [`engine`] | one streaming call over the model, the rust-hdl simulation and Verilator |
 //! | [`formal`] | formal proofs on the exported Verilog (SymbiYosys): float units against `symfpu`, pipeline latency by k-induction, mutants |
@@ -37,6 +38,7 @@ pub mod vcd_plain;
 pub mod vcd_read;
 pub mod verilator;
 pub mod verilog_tools;
+pub mod xsim;
 
 /// The project's output folder for generated artefacts (Verilog, VCD, reports, harness builds):
 /// `$RTU_OUT`, or `out/` at the workspace root.

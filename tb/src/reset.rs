@@ -8,8 +8,8 @@
 //! test's tag. Data registers are not reset, so the data outputs are compared only while `valid_out`.
 
 use crate::rtl_sim::TesterSim;
-use crate::slab::ports::{in_word, TesterCtx};
-use crate::verilator::Harness;
+use crate::verilator::{Harness, Port};
+use crate::xsim::{in_word, BlockCtx};
 use rand::{Rng, SeedableRng};
 use rand_pcg::Pcg64;
 use rtl::TesterIo;
@@ -95,7 +95,7 @@ pub fn reset_check<S, M>(
     vcd: &Path,
     verilator: Option<(
         &Harness,
-        &dyn Fn(&str, u16, &Option<(S::Ray, S::Box)>) -> Result<u64, String>,
+        &dyn Fn(&Port, u16, &Option<(S::Ray, S::Box)>) -> Result<u64, String>,
     )>,
 ) -> Result<ResetStats, String>
 where
@@ -196,7 +196,7 @@ where
                 } else if v.is_none() {
                     Ok(0)
                 } else {
-                    in_word(&p.name, tags[c], &v)
+                    in_word(p, tags[c], &v)
                 }
             })
             .collect::<Result<Vec<u64>, String>>()?;
@@ -226,7 +226,7 @@ where
     Ok(stats)
 }
 
-/// The reset check of a block that has a [`TesterCtx`] (the slab and cull-plane testers): the stream
+/// The reset check of a block that has a [`BlockCtx`] (every pipelined tester): the stream
 /// [`reset_stream`] of `tests`, the block made by `make` against `ctx`'s model, and its exported
 /// `verilog` (module `module`) built into a Verilator harness against the rust-hdl simulation; the VCD
 /// goes to `out/vcd/reset_<module>.vcd`.
@@ -239,7 +239,7 @@ pub fn check_block<C, S>(
     seed: u64,
 ) -> Result<ResetStats, String>
 where
-    C: TesterCtx,
+    C: BlockCtx,
     S: TesterIo<Ray = C::Ray, Box = C::Box, Out = C::Out>,
 {
     let h = crate::verilator::build(verilog, module, &crate::out_dir().join("verilator"))?;
@@ -247,7 +247,7 @@ where
     let vcd = crate::out_dir()
         .join("vcd")
         .join(format!("reset_{module}.vcd"));
-    let word = |p: &str, t: u16, x: &Option<(C::Ray, C::Box)>| in_word(&ctx, p, t, x);
+    let word = |p: &Port, t: u16, x: &Option<(C::Ray, C::Box)>| in_word(&ctx, p, t, x);
     reset_check(
         make,
         |r, b| ctx.model(r, b),

@@ -23,8 +23,8 @@ use std::cell::RefCell;
 use tb::campaign::{conservative_campaign, float_campaign, float_vectors, slab_vectors};
 use tb::dut::run_checked;
 use tb::rtl_sim::TesterSim;
-use tb::slab::ports::xsim;
 use tb::slab::strategies::{float_burst, slab_burst};
+use tb::xsim::xsim;
 
 /// Stream vectors per format (world, one in eight raw, bubbles) through the rust-hdl simulation.
 const SIM_VECTORS: u64 = 3_000;

@@ -114,17 +114,6 @@ pub fn node_quot(cf: &CullFixFormat, k: usize, r: &NodeFixRay, n: &FixNode) -> P
     }
 }
 
-/// The packed output word of a fraction (the ports' layout), for testbenches.
-pub fn quot_word(cf: &CullFixFormat, f: &Quot) -> u64 {
-    let sb = cf.s_bits() as usize;
-    let low = if f.den == 0 {
-        code(f.num, cf.base.t as usize)
-    } else {
-        code(f.num, sb)
-    };
-    (f.den << sb) | low
-}
-
 /// What `rtl::plane::quot_bound::PlaneQuotBound` outputs, as native values (`num` sign-extended).
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub struct QuotEffect {

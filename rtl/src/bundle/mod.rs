@@ -7,6 +7,7 @@
 //! | [`edge_le::EdgeLe`], [`dist_le::DistLe`], [`fold_diff::FoldDiff`] | `bundle/*.rs` | the fixed pair's comparisons |
 //! | [`edge_float::BundleFloatTest`] | `bundle/edge_float.rs` | one float edge tester, `golden::bundle::float` |
 //! | [`pair_float::BundleFloat`] | `bundle/pair_float.rs` | the float pair, `golden::bundle::float::decide_float` |
+//! | [`ports::PairFixPorts`], [`ports::PairFloatPorts`] | `bundle/ports.rs` | the port codecs: what each port of the two pairs carries |
 //! | [`split::BundleSplit`] | `bundle/split.rs` | the results processor, `golden::bundle::split` |
 //! | [`stream::BundleStream`] | `bundle/stream.rs` | the results processor with jobs in flight, `golden::bundle::stream` |
 //! | [`stream_ctl::StreamCtl`] | `bundle/stream_ctl.rs` | the control of both streaming processors |
@@ -23,6 +24,7 @@ pub mod edge_le;
 pub mod fold_diff;
 pub mod pair_fix;
 pub mod pair_float;
+pub mod ports;
 pub mod ray_store;
 pub mod rebound;
 pub mod registry;

@@ -46,8 +46,9 @@
 use crate::bundle::edge_fix::{
     bundle_test_latency, BundleTest, BUNDLE_TEST_CUTS, BUNDLE_TEST_CUTS_DEEP,
 };
+use crate::bundle::ports::PairFixPorts;
 use crate::io::TesterIo;
-use crate::slab::fix::{code, TAG_BITS};
+use crate::slab::fix::TAG_BITS;
 use golden::bundle::edge::BoxPair;
 use golden::bundle::fix::{all_hit_fix, all_miss_fix, BundleFixFormat, FixBundle};
 use golden::format::fixed::FixBox;
@@ -214,6 +215,11 @@ impl PairInput {
         }
     }
 
+    /// True for two rays.
+    pub fn is_two_rays(&self) -> bool {
+        matches!(self, PairInput::TwoRays(..))
+    }
+
     /// The bit-accurate model, `(all_hit, all_miss)`: for a bundle `(all_hit_fix` on the inner box,
     /// `all_miss_fix` on the outer box`)`; for two rays `(!all_miss_fix(A)`, `all_miss_fix(B))`, both on
     /// the outer box ("A may hit", "B misses").
@@ -258,61 +264,15 @@ impl<const G: usize, const V: usize, const D: usize, const T: usize, const CUTS:
     /// `(all_hit, all_miss)`, as `golden::bundle::fix::decide_fix`.
     type Out = (bool, bool);
     const LATENCY: usize = bundle_fix_latency(CUTS);
+    type Ports = PairFixPorts;
 
-    fn set_clock(&mut self, high: bool) {
-        self.clock.next = Clock { clk: high };
+    fn ports() -> PairFixPorts {
+        PairFixPorts
     }
 
-    fn set_reset(&mut self, on: bool) {
-        self.rst.next = on;
-    }
-
-    fn drive(&mut self, test: Option<(u16, &PairInput, &BoxPair<FixBox>)>) {
-        match test {
-            Some((tag, input, p)) => {
-                let (b, r) = input.sides();
-                self.valid_in.next = true;
-                self.two_rays.next = matches!(input, PairInput::TwoRays(..));
-                self.tag_in.next = bits::<TAG_BITS>(tag as u64);
-                for a in 0..3 {
-                    self.o_lo[a].next = bits::<G>(code(b.o_lo[a], G));
-                    self.o_hi[a].next = bits::<G>(code(b.o_hi[a], G));
-                    self.d_lo[a].next = bits::<D>(code(b.d_lo[a], D));
-                    self.d_hi[a].next = bits::<D>(code(b.d_hi[a], D));
-                    self.in_lo[a].next = bits::<G>(code(p.inner.lo[a], G));
-                    self.in_hi[a].next = bits::<G>(code(p.inner.hi[a], G));
-                    self.out_lo[a].next = bits::<G>(code(p.outer.lo[a], G));
-                    self.out_hi[a].next = bits::<G>(code(p.outer.hi[a], G));
-                    self.r_o_lo[a].next = bits::<G>(code(r.o_lo[a], G));
-                    self.r_o_hi[a].next = bits::<G>(code(r.o_hi[a], G));
-                    self.r_d_lo[a].next = bits::<D>(code(r.d_lo[a], D));
-                    self.r_d_hi[a].next = bits::<D>(code(r.d_hi[a], D));
-                }
-                self.r_t.next = bits::<T>(code(r.t_hi, T));
-                self.t_lo.next = bits::<T>(code(b.t_lo, T));
-                self.t_hi.next = bits::<T>(code(b.t_hi, T));
-            }
-            None => self.valid_in.next = false,
-        }
-    }
-
-    fn result(&self) -> Option<(u16, (bool, bool))> {
-        if !self.valid_out.val() {
-            return None;
-        }
-        Some((
-            self.tag_out.val().to_u64() as u16,
-            (self.all_hit.val(), self.all_miss.val()),
-        ))
-    }
-
-    fn output_word(&self, port: &str) -> Option<u64> {
-        Some(match port {
-            "valid_out" => self.valid_out.val() as u64,
-            "tag_out" => self.tag_out.val().to_u64(),
-            "all_hit" => self.all_hit.val() as u64,
-            "all_miss" => self.all_miss.val() as u64,
-            _ => return None,
-        })
-    }
+    crate::tester_ports!(
+        inputs: o_lo, o_hi, d_lo, d_hi, t_lo, t_hi, two_rays, r_o_lo, r_o_hi, r_d_lo, r_d_hi, r_t,
+            in_lo, in_hi, out_lo, out_hi;
+        outputs: all_hit, all_miss
+    );
 }

@@ -46,6 +46,7 @@
 //! equal), so that no child output is left unused.
 
 use crate::bundle::edge_float::{bundle_float_test_latency, BundleFloatTest};
+use crate::bundle::ports::PairFloatPorts;
 use crate::io::TesterIo;
 use crate::TAG_BITS;
 use golden::bundle::edge::BoxPair;
@@ -277,62 +278,15 @@ impl<const E: usize, const M: usize, const N: usize, const CUTS: usize> TesterIo
     /// `(all_hit, all_miss)`, as [`FloatPairInput::model`].
     type Out = (bool, bool);
     const LATENCY: usize = bundle_float_latency(CUTS);
+    type Ports = PairFloatPorts;
 
-    fn set_clock(&mut self, high: bool) {
-        self.clock.next = Clock { clk: high };
+    fn ports() -> PairFloatPorts {
+        PairFloatPorts
     }
 
-    fn set_reset(&mut self, on: bool) {
-        self.rst.next = on;
-    }
-
-    fn drive(&mut self, test: Option<(u16, &FloatPairInput, &BoxPair<FloatBox>)>) {
-        match test {
-            Some((tag, input, p)) => {
-                let (a, r) = input.sides();
-                let w = |x: u32| bits::<N>(x as u64);
-                self.valid_in.next = true;
-                self.two_rays.next = input.is_two_rays();
-                self.tag_in.next = bits::<TAG_BITS>(tag as u64);
-                for i in 0..3 {
-                    self.o_lo[i].next = w(a.o_lo[i]);
-                    self.o_hi[i].next = w(a.o_hi[i]);
-                    self.d_lo[i].next = w(a.d_lo[i]);
-                    self.d_hi[i].next = w(a.d_hi[i]);
-                    self.r_o_lo[i].next = w(r.o_lo[i]);
-                    self.r_o_hi[i].next = w(r.o_hi[i]);
-                    self.r_d_lo[i].next = w(r.d_lo[i]);
-                    self.r_d_hi[i].next = w(r.d_hi[i]);
-                    self.in_lo[i].next = w(p.inner.lo[i]);
-                    self.in_hi[i].next = w(p.inner.hi[i]);
-                    self.out_lo[i].next = w(p.outer.lo[i]);
-                    self.out_hi[i].next = w(p.outer.hi[i]);
-                }
-                self.t_lo.next = w(a.t_lo);
-                self.t_hi.next = w(a.t_hi);
-                self.r_t.next = w(r.t_hi);
-            }
-            None => self.valid_in.next = false,
-        }
-    }
-
-    fn result(&self) -> Option<(u16, (bool, bool))> {
-        if !self.valid_out.val() {
-            return None;
-        }
-        Some((
-            self.tag_out.val().to_u64() as u16,
-            (self.all_hit.val(), self.all_miss.val()),
-        ))
-    }
-
-    fn output_word(&self, port: &str) -> Option<u64> {
-        Some(match port {
-            "valid_out" => self.valid_out.val() as u64,
-            "tag_out" => self.tag_out.val().to_u64(),
-            "all_hit" => self.all_hit.val() as u64,
-            "all_miss" => self.all_miss.val() as u64,
-            _ => return None,
-        })
-    }
+    crate::tester_ports!(
+        inputs: o_lo, o_hi, d_lo, d_hi, t_lo, t_hi, two_rays, r_o_lo, r_o_hi, r_d_lo, r_d_hi, r_t,
+            in_lo, in_hi, out_lo, out_hi;
+        outputs: all_hit, all_miss
+    );
 }

@@ -36,10 +36,9 @@
 use crate::cut::Cut;
 use crate::io::TesterIo;
 use crate::plane::bound::PlaneBound;
+use crate::plane::ports::PlaneFixPorts;
 use crate::plane::sums::PlaneSums;
-use crate::slab::fix::{
-    code, sext, slab_fix_latency, SlabFix, SLAB_FIX_CUTS, SLAB_FIX_CUTS_DEEP, TAG_BITS,
-};
+use crate::slab::fix::{slab_fix_latency, SlabFix, SLAB_FIX_CUTS, SLAB_FIX_CUTS_DEEP, TAG_BITS};
 use golden::plane::fix::{CullFixFormat, FixNode, NodeFixRay, PlaneFixOut, MAX_PLANES};
 use rust_hdl::prelude::*;
 
@@ -336,70 +335,17 @@ impl<
     type Box = FixNode;
     type Out = PlaneFixOut;
     const LATENCY: usize = plane_fix_latency(SCUTS, PCUTS);
+    type Ports = PlaneFixPorts;
 
-    fn set_clock(&mut self, high: bool) {
-        self.clock.next = Clock { clk: high };
+    fn ports() -> PlaneFixPorts {
+        PlaneFixPorts
     }
 
-    fn set_reset(&mut self, on: bool) {
-        self.rst.next = on;
-    }
-
-    fn drive(&mut self, test: Option<(u16, &NodeFixRay, &FixNode)>) {
-        match test {
-            Some((tag, r, n)) => {
-                self.valid_in.next = true;
-                self.tag_in.next = bits::<TAG_BITS>(tag as u64);
-                let (ray, b) = (&r.ray, &n.b);
-                for a in 0..3 {
-                    self.ray_o_lo[a].next = bits::<G>(code(ray.o_lo[a], G));
-                    self.ray_o_hi[a].next = bits::<G>(code(ray.o_hi[a], G));
-                    self.ray_m_lo[a].next = bits::<I>(ray.m_lo[a]);
-                    self.ray_m_hi[a].next = bits::<I>(ray.m_hi[a]);
-                    self.ray_neg[a].next = ray.neg[a];
-                    self.ray_d_lo[a].next = bits::<DB>(code(r.dir.lo[a], DB));
-                    self.ray_d_hi[a].next = bits::<DB>(code(r.dir.hi[a], DB));
-                    self.box_lo[a].next = bits::<G>(code(b.lo[a], G));
-                    self.box_hi[a].next = bits::<G>(code(b.hi[a], G));
-                }
-                self.ray_t_min.next = bits::<T>(code(ray.t_min, T));
-                self.ray_t_max.next = bits::<T>(code(ray.t_max, T));
-                for k in 0..K {
-                    let p = &n.planes[k];
-                    self.plane_nx[k].next = bits::<N>(code(p.n[0], N));
-                    self.plane_ny[k].next = bits::<N>(code(p.n[1], N));
-                    self.plane_nz[k].next = bits::<N>(code(p.n[2], N));
-                    self.plane_w[k].next = bits::<WB>(code(p.w, WB));
-                }
-            }
-            None => self.valid_in.next = false,
-        }
-    }
-
-    fn result(&self) -> Option<(u16, PlaneFixOut)> {
-        if !self.valid_out.val() {
-            return None;
-        }
-        Some((
-            self.tag_out.val().to_u64() as u16,
-            PlaneFixOut {
-                hit: self.hit.val(),
-                t_entry: sext(self.t_entry.val().to_u64(), T),
-                t_exit: sext(self.t_exit.val().to_u64(), T),
-            },
-        ))
-    }
-
-    fn output_word(&self, port: &str) -> Option<u64> {
-        Some(match port {
-            "valid_out" => self.valid_out.val() as u64,
-            "tag_out" => self.tag_out.val().to_u64(),
-            "hit" => self.hit.val() as u64,
-            "t_entry" => self.t_entry.val().to_u64(),
-            "t_exit" => self.t_exit.val().to_u64(),
-            _ => return None,
-        })
-    }
+    crate::tester_ports!(
+        inputs: ray_o_lo, ray_o_hi, ray_m_lo, ray_m_hi, ray_neg, ray_t_min, ray_t_max, box_lo, box_hi,
+            ray_d_lo, ray_d_hi, plane_nx, plane_ny, plane_nz, plane_w;
+        outputs: hit, t_entry, t_exit
+    );
 }
 
 impl<

@@ -40,6 +40,7 @@ use crate::fp::add::{FpAdd, FP_ADD_LATENCY};
 use crate::fp::cmp::FpCmp;
 use crate::fp::mul::{FpMul, FP_MUL_LATENCY};
 use crate::io::TesterIo;
+use crate::plane::ports::PlaneFloatPorts;
 use crate::plane::recip::{FpRecip, FP_RECIP_LATENCY};
 use crate::slab::float::{SlabFloat, SLAB_FLOAT_LATENCY};
 use crate::TAG_BITS;
@@ -708,70 +709,17 @@ impl<const E: usize, const M: usize, const N: usize, const K: usize> TesterIo
     type Box = FloatNode;
     type Out = SlabFloatOut;
     const LATENCY: usize = PLANE_FLOAT_LATENCY;
+    type Ports = PlaneFloatPorts;
 
-    fn set_clock(&mut self, high: bool) {
-        self.clock.next = Clock { clk: high };
+    fn ports() -> PlaneFloatPorts {
+        PlaneFloatPorts
     }
 
-    fn set_reset(&mut self, on: bool) {
-        self.rst.next = on;
-    }
-
-    fn drive(&mut self, test: Option<(u16, &NodeFloatRay, &FloatNode)>) {
-        match test {
-            Some((tag, nr, node)) => {
-                let (r, d, b) = (&nr.ray, &nr.dir, &node.b);
-                self.valid_in.next = true;
-                self.tag_in.next = bits::<TAG_BITS>(tag as u64);
-                for a in 0..3 {
-                    self.ray_o_lo[a].next = bits::<N>(r.o_lo[a] as u64);
-                    self.ray_o_hi[a].next = bits::<N>(r.o_hi[a] as u64);
-                    self.ray_m_lo[a].next = bits::<N>(r.m_lo[a] as u64);
-                    self.ray_m_hi[a].next = bits::<N>(r.m_hi[a] as u64);
-                    self.ray_neg[a].next = r.neg[a];
-                    self.box_lo[a].next = bits::<N>(b.lo[a] as u64);
-                    self.box_hi[a].next = bits::<N>(b.hi[a] as u64);
-                    self.ray_d_lo[a].next = bits::<N>(d.lo[a] as u64);
-                    self.ray_d_hi[a].next = bits::<N>(d.hi[a] as u64);
-                }
-                self.ray_t_min.next = bits::<N>(r.t_min as u64);
-                self.ray_t_max.next = bits::<N>(r.t_max as u64);
-                for k in 0..K {
-                    let p = &node.planes[k];
-                    self.plane_nx[k].next = bits::<N>(p.n[0] as u64);
-                    self.plane_ny[k].next = bits::<N>(p.n[1] as u64);
-                    self.plane_nz[k].next = bits::<N>(p.n[2] as u64);
-                    self.plane_w[k].next = bits::<N>(p.w as u64);
-                }
-            }
-            None => self.valid_in.next = false,
-        }
-    }
-
-    fn result(&self) -> Option<(u16, SlabFloatOut)> {
-        if !self.valid_out.val() {
-            return None;
-        }
-        Some((
-            self.tag_out.val().to_u64() as u16,
-            SlabFloatOut {
-                hit: self.hit.val(),
-                t_entry: self.t_entry.val().to_u64() as u32,
-                t_exit: self.t_exit.val().to_u64() as u32,
-            },
-        ))
-    }
-
-    fn output_word(&self, port: &str) -> Option<u64> {
-        Some(match port {
-            "valid_out" => self.valid_out.val() as u64,
-            "tag_out" => self.tag_out.val().to_u64(),
-            "hit" => self.hit.val() as u64,
-            "t_entry" => self.t_entry.val().to_u64(),
-            "t_exit" => self.t_exit.val().to_u64(),
-            _ => return None,
-        })
-    }
+    crate::tester_ports!(
+        inputs: ray_o_lo, ray_o_hi, ray_m_lo, ray_m_hi, ray_neg, ray_t_min, ray_t_max, box_lo, box_hi,
+            ray_d_lo, ray_d_hi, plane_nx, plane_ny, plane_nz, plane_w;
+        outputs: hit, t_entry, t_exit
+    );
 }
 
 impl<const E: usize, const M: usize, const N: usize, const K: usize> Logic

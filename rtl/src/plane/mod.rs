@@ -14,6 +14,7 @@
 //! | [`quot::PlaneQuot`] | `plane/quot.rs` | `golden::plane::quot::node_quot` (the quotient option: bounds kept as exact quotients) |
 //! | [`quot_bound::PlaneQuotBound`] | `plane/quot_bound.rs` | `golden::plane::fix::cull_fix_quotients` |
 //! | [`quot_cmp::QuotCmp`], [`quot_code_cmp::CodeQuotCmp`], [`quot_pick::QuotPick`], [`quot_tree::QuotTree`] | `plane/quot_*.rs` | orderings of quotients by cross-multiplication |
+//! | [`ports::PlaneFixPorts`], [`ports::PlaneQuotPorts`], [`ports::PlaneFloatPorts`] | `plane/ports.rs` | the port codecs: what each port of the three testers carries |
 //!
 //! Which configurations exist, and the dispatch over them: [`registry`].
 
@@ -24,6 +25,7 @@ pub mod bound_scale;
 pub mod bound_table;
 pub mod fix;
 pub mod float;
+pub mod ports;
 pub mod quot;
 pub mod quot_bound;
 pub mod quot_cmp;

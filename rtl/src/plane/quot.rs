@@ -39,14 +39,15 @@
 
 use crate::delay::Delay3;
 use crate::io::TesterIo;
+use crate::plane::ports::PlaneQuotPorts;
 use crate::plane::quot_bound::PlaneQuotBound;
 use crate::plane::quot_cmp::QuotCmp;
 use crate::plane::quot_code_cmp::CodeQuotCmp;
 use crate::plane::quot_tree::QuotTree;
 use crate::plane::sums::PlaneSums;
-use crate::slab::fix::{code, sext, SlabFix, TAG_BITS};
+use crate::slab::fix::{SlabFix, TAG_BITS};
 use golden::plane::fix::{CullFixFormat, FixNode, NodeFixRay, MAX_PLANES};
-use golden::plane::quot::{quot_den_bits, quot_scale, PlaneQuotOut, Quot};
+use golden::plane::quot::{quot_den_bits, quot_scale, PlaneQuotOut};
 use rust_hdl::prelude::*;
 
 /// Clocks from a node test entering `PlaneQuot` to its result leaving.
@@ -248,17 +249,6 @@ impl<
             tag_q6: Default::default(),
         }
     }
-
-    /// A packed output fraction, unpacked.
-    fn unpack(word: u64) -> Quot {
-        let den = word >> SB;
-        let num = if den == 0 {
-            sext(word & ((1 << T) - 1), T)
-        } else {
-            sext(word & ((1 << SB) - 1), SB)
-        };
-        Quot { num, den }
-    }
 }
 
 /// The fraction option of any width and plane count, built for a plane format.
@@ -309,68 +299,17 @@ impl<
     type Box = FixNode;
     type Out = PlaneQuotOut;
     const LATENCY: usize = PLANE_QUOT_LATENCY;
+    type Ports = PlaneQuotPorts;
 
-    fn set_clock(&mut self, high: bool) {
-        self.clock.next = Clock { clk: high };
+    fn ports() -> PlaneQuotPorts {
+        PlaneQuotPorts { sb: SB, t: T }
     }
 
-    fn set_reset(&mut self, on: bool) {
-        self.rst.next = on;
-    }
-
-    fn drive(&mut self, test: Option<(u16, &NodeFixRay, &FixNode)>) {
-        let Some((tag, r, n)) = test else {
-            self.valid_in.next = false;
-            return;
-        };
-        self.valid_in.next = true;
-        self.tag_in.next = bits::<TAG_BITS>(tag as u64);
-        let (ray, b) = (&r.ray, &n.b);
-        for a in 0..3 {
-            self.ray_o_lo[a].next = bits::<G>(code(ray.o_lo[a], G));
-            self.ray_o_hi[a].next = bits::<G>(code(ray.o_hi[a], G));
-            self.ray_m_lo[a].next = bits::<I>(ray.m_lo[a]);
-            self.ray_m_hi[a].next = bits::<I>(ray.m_hi[a]);
-            self.ray_neg[a].next = ray.neg[a];
-            self.ray_d_lo[a].next = bits::<DB>(code(r.dir.lo[a], DB));
-            self.ray_d_hi[a].next = bits::<DB>(code(r.dir.hi[a], DB));
-            self.box_lo[a].next = bits::<G>(code(b.lo[a], G));
-            self.box_hi[a].next = bits::<G>(code(b.hi[a], G));
-        }
-        self.ray_t_min.next = bits::<T>(code(ray.t_min, T));
-        self.ray_t_max.next = bits::<T>(code(ray.t_max, T));
-        for (k, p) in n.planes[..K].iter().enumerate() {
-            let [nx, ny, nz] = p.n.map(|c| bits::<N>(code(c, N)));
-            self.plane_nx[k].next = nx;
-            self.plane_ny[k].next = ny;
-            self.plane_nz[k].next = nz;
-            self.plane_w[k].next = bits::<WB>(code(p.w, WB));
-        }
-    }
-
-    fn result(&self) -> Option<(u16, PlaneQuotOut)> {
-        self.valid_out.val().then(|| {
-            (
-                self.tag_out.val().to_u64() as u16,
-                PlaneQuotOut {
-                    hit: self.hit.val(),
-                    t_entry: Self::unpack(self.t_entry.val().to_u64()),
-                    t_exit: Self::unpack(self.t_exit.val().to_u64()),
-                },
-            )
-        })
-    }
-
-    fn output_word(&self, port: &str) -> Option<u64> {
-        Some(match port {
-            "valid_out" => self.valid_out.val() as u64,
-            "tag_out" => self.tag_out.val().to_u64(),
-            "hit" => self.hit.val() as u64,
-            "t_entry" => self.t_entry.val().to_u64(),
-            "t_exit" => self.t_exit.val().to_u64(),
-            _ => return None,
-        })
-    }
+    crate::tester_ports!(
+        inputs: ray_o_lo, ray_o_hi, ray_m_lo, ray_m_hi, ray_neg, ray_t_min, ray_t_max, box_lo, box_hi,
+            ray_d_lo, ray_d_hi, plane_nx, plane_ny, plane_nz, plane_w;
+        outputs: hit, t_entry, t_exit
+    );
 }
 
 impl<

@@ -23,8 +23,8 @@
 //! - `box_*`: the fields of [`FixBox`] — `box_lo`, `box_hi`.
 //!
 //! rust-hdl 0.46's `LogicInterface` cannot hold arrays, so the grouping is by name prefix in the ports and
-//! by type in the Rust API: [`SlabFix::drive`] takes a [`FixRay`] and a [`FixBox`], [`SlabFix::result`]
-//! gives a [`SlabFixOut`].
+//! by type in the Rust API: `TesterIo::drive` takes a [`FixRay`] and a [`FixBox`], `TesterIo::result`
+//! gives a [`SlabFixOut`], both through the port codec [`crate::slab::ports::SlabFixPorts`].
 //!
 //! # Outputs (registered, [`slab_fix_latency`]`(CUTS)` clocks after the inputs: 4 by default)
 //! - `valid_out`, `tag_out`, `hit`, `t_entry`, `t_exit`.
@@ -53,6 +53,7 @@ use crate::cut::Cut;
 use crate::io::TesterIo;
 use crate::slab::axis_dist::AxisDist;
 use crate::slab::mul_round::MulRound;
+use crate::slab::ports::SlabFixPorts;
 use golden::format::fixed::{FixBox, FixFormat, FixRay};
 use golden::slab::fix::SlabFixOut;
 use rust_hdl::prelude::*;
@@ -315,60 +316,16 @@ impl<const G: usize, const D: usize, const I: usize, const T: usize, const CUTS:
     type Box = FixBox;
     type Out = SlabFixOut;
     const LATENCY: usize = slab_fix_latency(CUTS);
+    type Ports = SlabFixPorts;
 
-    fn set_clock(&mut self, high: bool) {
-        self.clock.next = Clock { clk: high };
+    fn ports() -> SlabFixPorts {
+        SlabFixPorts
     }
 
-    fn set_reset(&mut self, on: bool) {
-        self.rst.next = on;
-    }
-
-    fn drive(&mut self, test: Option<(u16, &FixRay, &FixBox)>) {
-        match test {
-            Some((tag, r, b)) => {
-                self.valid_in.next = true;
-                self.tag_in.next = bits::<TAG_BITS>(tag as u64);
-                for a in 0..3 {
-                    self.ray_o_lo[a].next = bits::<G>(code(r.o_lo[a], G));
-                    self.ray_o_hi[a].next = bits::<G>(code(r.o_hi[a], G));
-                    self.ray_m_lo[a].next = bits::<I>(r.m_lo[a]);
-                    self.ray_m_hi[a].next = bits::<I>(r.m_hi[a]);
-                    self.ray_neg[a].next = r.neg[a];
-                    self.box_lo[a].next = bits::<G>(code(b.lo[a], G));
-                    self.box_hi[a].next = bits::<G>(code(b.hi[a], G));
-                }
-                self.ray_t_min.next = bits::<T>(code(r.t_min, T));
-                self.ray_t_max.next = bits::<T>(code(r.t_max, T));
-            }
-            None => self.valid_in.next = false,
-        }
-    }
-
-    fn result(&self) -> Option<(u16, SlabFixOut)> {
-        if !self.valid_out.val() {
-            return None;
-        }
-        Some((
-            self.tag_out.val().to_u64() as u16,
-            SlabFixOut {
-                hit: self.hit.val(),
-                t_entry: sext(self.t_entry.val().to_u64(), T),
-                t_exit: sext(self.t_exit.val().to_u64(), T),
-            },
-        ))
-    }
-
-    fn output_word(&self, port: &str) -> Option<u64> {
-        Some(match port {
-            "valid_out" => self.valid_out.val() as u64,
-            "tag_out" => self.tag_out.val().to_u64(),
-            "hit" => self.hit.val() as u64,
-            "t_entry" => self.t_entry.val().to_u64(),
-            "t_exit" => self.t_exit.val().to_u64(),
-            _ => return None,
-        })
-    }
+    crate::tester_ports!(
+        inputs: ray_o_lo, ray_o_hi, ray_m_lo, ray_m_hi, ray_neg, ray_t_min, ray_t_max, box_lo, box_hi;
+        outputs: hit, t_entry, t_exit
+    );
 }
 
 impl<const G: usize, const D: usize, const I: usize, const T: usize, const CUTS: usize> Logic

@@ -29,6 +29,7 @@ use crate::fp::add::{fp_add_latency, FpAdd};
 use crate::fp::cmp::FpCmp;
 use crate::fp::mul::{fp_mul_latency, FpMul};
 use crate::io::TesterIo;
+use crate::slab::ports::SlabFloatPorts;
 use crate::TAG_BITS;
 use golden::format::float::{FloatFormat, Rounding};
 use golden::slab::float::{FloatBox, FloatRay, SlabFloatOut};
@@ -252,60 +253,16 @@ impl<const E: usize, const M: usize, const N: usize, const CUTS: usize> TesterIo
     type Box = FloatBox;
     type Out = SlabFloatOut;
     const LATENCY: usize = slab_float_latency(CUTS);
+    type Ports = SlabFloatPorts;
 
-    fn set_clock(&mut self, high: bool) {
-        self.clock.next = Clock { clk: high };
+    fn ports() -> SlabFloatPorts {
+        SlabFloatPorts
     }
 
-    fn set_reset(&mut self, on: bool) {
-        self.rst.next = on;
-    }
-
-    fn drive(&mut self, test: Option<(u16, &FloatRay, &FloatBox)>) {
-        match test {
-            Some((tag, r, b)) => {
-                self.valid_in.next = true;
-                self.tag_in.next = bits::<TAG_BITS>(tag as u64);
-                for a in 0..3 {
-                    self.ray_o_lo[a].next = bits::<N>(r.o_lo[a] as u64);
-                    self.ray_o_hi[a].next = bits::<N>(r.o_hi[a] as u64);
-                    self.ray_m_lo[a].next = bits::<N>(r.m_lo[a] as u64);
-                    self.ray_m_hi[a].next = bits::<N>(r.m_hi[a] as u64);
-                    self.ray_neg[a].next = r.neg[a];
-                    self.box_lo[a].next = bits::<N>(b.lo[a] as u64);
-                    self.box_hi[a].next = bits::<N>(b.hi[a] as u64);
-                }
-                self.ray_t_min.next = bits::<N>(r.t_min as u64);
-                self.ray_t_max.next = bits::<N>(r.t_max as u64);
-            }
-            None => self.valid_in.next = false,
-        }
-    }
-
-    fn result(&self) -> Option<(u16, SlabFloatOut)> {
-        if !self.valid_out.val() {
-            return None;
-        }
-        Some((
-            self.tag_out.val().to_u64() as u16,
-            SlabFloatOut {
-                hit: self.hit.val(),
-                t_entry: self.t_entry.val().to_u64() as u32,
-                t_exit: self.t_exit.val().to_u64() as u32,
-            },
-        ))
-    }
-
-    fn output_word(&self, port: &str) -> Option<u64> {
-        Some(match port {
-            "valid_out" => self.valid_out.val() as u64,
-            "tag_out" => self.tag_out.val().to_u64(),
-            "hit" => self.hit.val() as u64,
-            "t_entry" => self.t_entry.val().to_u64(),
-            "t_exit" => self.t_exit.val().to_u64(),
-            _ => return None,
-        })
-    }
+    crate::tester_ports!(
+        inputs: ray_o_lo, ray_o_hi, ray_m_lo, ray_m_hi, ray_neg, ray_t_min, ray_t_max, box_lo, box_hi;
+        outputs: hit, t_entry, t_exit
+    );
 }
 
 impl<const E: usize, const M: usize, const N: usize, const CUTS: usize> Logic

@@ -1,17 +1,11 @@
 //! Testbench glue of the fixed-point bundle pair ([`rtl::bundle::pair_fix::BundleFix`]): the model as the
 //! testbench sees it, vector streams (BundleGen bundles, on-grid single rays, two-ray inputs of on-grid
-//! and off-grid quantised rays, and raw codes, with bubbles), port encoding, and the cross-simulation
-//! loop that checks Verilator against the rust-hdl simulation and the model.
-//!
-//! The slab testers' loop ([`crate::slab::ports::xsim`]) is written around `hit`, `t_entry`, `t_exit`; this
-//! one compares whole output records instead (every output port of a valid cycle, `valid_out` of every
-//! cycle), so it serves any block whose model gives its output ports' values.
+//! and off-grid quantised rays, and raw codes, with bubbles), and `BundleFixFormat` as the
+//! [`BlockCtx`] that the one cross-simulation loop ([`crate::xsim::xsim`]) and the port-word files use.
 
 use crate::campaign::{campaign_bounds, campaign_map, raw_fix_vector};
-use crate::dut::PipelinedDut;
 use crate::rtl_sim::TesterSim;
-use crate::slab::ports::{replay_vcd, XsimStats, XSIM_VCD_WINDOW};
-use crate::verilator::Harness;
+use crate::xsim::BlockCtx;
 use golden::bundle::edge::{BoxPair, Bundle};
 use golden::bundle::fix::{quantize_box_pair, quantize_bundle, BundleFixFormat, FixBundle};
 use golden::bundle::gen::{BundleCase, BundleGen};
@@ -20,9 +14,7 @@ use golden::geom::Ray;
 use rand::{Rng, SeedableRng};
 use rand_pcg::Pcg64;
 use rtl::bundle::pair_fix::{BundleFixIo, PairInput};
-use rtl::slab::fix::code;
-use std::collections::VecDeque;
-use std::sync::mpsc::sync_channel;
+use rtl::bundle::ports::PairFixPorts;
 
 /// One test of the pair: a bundle (or two rays) and the box pair.
 pub type BundleVec = (PairInput, BoxPair<FixBox>);
@@ -186,159 +178,24 @@ pub fn bundle_vectors(
     })
 }
 
-/// The value of input port `port` (a Verilog name such as `d_lo_1`) for one cycle (zero for a bubble's
-/// data).
-pub fn bundle_in_word(
-    bf: &BundleFixFormat,
-    port: &str,
-    tag: u16,
-    v: &Option<BundleVec>,
-) -> Result<u64, String> {
-    let (base, idx) = rtl::verilog::split_port(port);
-    let idx = idx.unwrap_or(0);
-    let Some((input, p)) = v else {
-        return Ok(0);
-    };
-    let (b, r) = input.sides();
-    let (g, d, t) = (
-        bf.base.g as usize,
-        bf.dir_bits() as usize,
-        bf.base.t as usize,
-    );
-    Ok(match base {
-        "valid_in" => 1,
-        "rst" => 0,
-        "tag_in" => tag as u64,
-        "o_lo" => code(b.o_lo[idx], g),
-        "o_hi" => code(b.o_hi[idx], g),
-        "d_lo" => code(b.d_lo[idx], d),
-        "d_hi" => code(b.d_hi[idx], d),
-        "t_lo" => code(b.t_lo, t),
-        "t_hi" => code(b.t_hi, t),
-        "two_rays" => matches!(input, PairInput::TwoRays(..)) as u64,
-        "r_o_lo" => code(r.o_lo[idx], g),
-        "r_o_hi" => code(r.o_hi[idx], g),
-        "r_d_lo" => code(r.d_lo[idx], d),
-        "r_d_hi" => code(r.d_hi[idx], d),
-        "r_t" => code(r.t_hi, t),
-        "in_lo" => code(p.inner.lo[idx], g),
-        "in_hi" => code(p.inner.hi[idx], g),
-        "out_lo" => code(p.outer.lo[idx], g),
-        "out_hi" => code(p.outer.hi[idx], g),
-        _ => return Err(format!("unknown input port {port}")),
-    })
-}
-
-/// The output record the model predicts for a cycle: `valid_out`, and for a valid cycle every port.
-fn expected_word(port: &str, due: Option<(u16, (bool, bool))>) -> Option<u64> {
-    let (tag, (all_hit, all_miss)) = due?;
-    Some(match port {
-        "valid_out" => 1,
-        "tag_out" => tag as u64,
-        "all_hit" => all_hit as u64,
-        "all_miss" => all_miss as u64,
-        _ => return None,
-    })
-}
-
-/// Streams `vectors` through the Verilator `harness` of a [`BundleFixIo`] block and checks every output
-/// record against the model (results, tags, latency, and `valid_out` low when nothing is due) and, for
-/// the first `lockstep_cycles` cycles, against the rust-hdl simulation of the block made by `make` (every
-/// port of a valid cycle, `valid_out` always). On a failure the last cycles are replayed into a VCD.
-/// `XsimStats::hits` counts the tests with a decisive answer (all hit or all miss).
-pub fn bundle_xsim<S: BundleFixIo, It>(
-    bf: BundleFixFormat,
-    make: impl Fn() -> S,
-    harness: &Harness,
-    vectors: It,
-    lockstep_cycles: u64,
-) -> Result<XsimStats, String>
-where
-    It: Iterator<Item = Option<BundleVec>> + Send + 'static,
-{
-    let ports: Vec<String> = harness.inputs.iter().map(|p| p.name.clone()).collect();
-    let (tx, rx) = sync_channel::<(u16, Option<BundleVec>)>(1 << 16);
-    let lat = S::LATENCY as u64;
-    let mut tag = 0u16;
-    let records = vectors
-        .chain(std::iter::repeat_n(None, lat as usize + 1))
-        .map(move |v| {
-            let t = tag;
-            tag = tag.wrapping_add(v.is_some() as u16);
-            let rec = ports
-                .iter()
-                .map(|p| bundle_in_word(&bf, p, t, &v).expect("known port"))
-                .collect();
-            tx.send((t, v)).expect("consumer alive");
-            rec
-        });
-    let iv = harness
-        .output_index("valid_out")
-        .ok_or("no valid_out port")?;
-    let mut rtl = (lockstep_cycles > 0).then(|| TesterSim::wrap(make()));
-    let mut pending: VecDeque<(u64, u16, BundleVec)> = VecDeque::new();
-    let mut recent: VecDeque<(u16, Option<BundleVec>)> = VecDeque::new();
-    let mut stats = XsimStats::default();
-    let mut last_cycle = 0u64;
-    let cycles = harness
-        .stream(records, |cycle, out| {
-            let (tg, v) = rx.recv().map_err(|_| "producer ended early".to_string())?;
-            last_cycle = cycle;
-            recent.push_back((tg, v));
-            if recent.len() > XSIM_VCD_WINDOW {
-                recent.pop_front();
-            }
-            if let Some(x) = v {
-                pending.push_back((cycle, tg, x));
-            }
-            let due = pending
-                .front()
-                .filter(|p| p.0 + lat == cycle + 1)
-                .map(|p| (p.1, bundle_model(&bf, &p.2)));
-            if cycle >= lockstep_cycles {
-                rtl = None;
-            }
-            let sim_out = rtl.as_mut().map(|s| {
-                s.step(v.as_ref().map(|x| (tg, x)));
-                &s.uut
-            });
-            for (k, p) in harness.outputs.iter().enumerate() {
-                if k != iv && out[iv] == 0 {
-                    continue; // data ports are don't-care while not valid
-                }
-                let want = expected_word(&p.name, due).unwrap_or(0);
-                let sim = sim_out.and_then(|u| u.output_word(&p.name));
-                if out[k] != want || sim.is_some_and(|w| w != out[k]) {
-                    return Err(format!(
-                        "cycle {}: output {} is {:#x} in Verilator, {sim:?} in the rust-hdl simulation, \
-                         {want:#x} in the model (latency {lat})\n  test due: {:?}",
-                        cycle + 1,
-                        p.name,
-                        out[k],
-                        pending.front().filter(|p| p.0 + lat == cycle + 1)
-                    ));
-                }
-            }
-            if let Some((_, (all_hit, all_miss))) = due {
-                pending.pop_front();
-                stats.tests += 1;
-                stats.hits += (all_hit || all_miss) as u64;
-            }
-            Ok(())
-        })
-        .map_err(|e| {
-            let name = format!("xsim_bundle_fix_{}_cycle{}.vcd", bf.name(), last_cycle + 1);
-            let path = crate::out_dir().join("vcd").join(name);
-            match replay_vcd(&make, &recent, &path) {
-                Ok(()) => format!("{e}\n  waveform of the last {} cycles (rust-hdl): {}", recent.len(), path.display()),
-                Err(w) => format!("{e}\n  (no waveform: {w})"),
-            }
-        })?;
-    stats.cycles = cycles;
-    if !pending.is_empty() {
-        return Err(format!("{} results never left the pipeline", pending.len()));
+impl BlockCtx for BundleFixFormat {
+    type Ray = PairInput;
+    type Box = BoxPair<FixBox>;
+    type Out = (bool, bool);
+    type Ports = PairFixPorts;
+    fn name(&self) -> String {
+        format!("bundle_fix_{}", BundleFixFormat::name(self))
     }
-    Ok(stats)
+    fn ports(&self) -> PairFixPorts {
+        PairFixPorts
+    }
+    fn model(&self, r: &PairInput, b: &BoxPair<FixBox>) -> (bool, bool) {
+        r.model(self, b)
+    }
+    /// A decisive answer: all hit or all miss.
+    fn counts_as_hit(&self, o: &(bool, bool)) -> bool {
+        o.0 || o.1
+    }
 }
 
 /// The stream runner's view of a bundle pair in simulation (for [`crate::dut::run_checked`]).

@@ -1,17 +1,11 @@
 //! Testbench glue of the float bundle pair ([`rtl::bundle::pair_float::BundleFloat`]): the model as the
 //! testbench sees it, vector streams (BundleGen bundles, single rays quantised as tiny bundles, two-ray
-//! inputs and raw bit patterns, with bubbles), port encoding, and the cross-simulation loop that checks
-//! Verilator against the rust-hdl simulation and the model.
-//!
-//! The fixed pair's loop ([`crate::bundle::pair_fix::bundle_xsim`]) is written for its format and vectors; this
-//! one is the same check for the float pair: every output port of a valid cycle and `valid_out` of every
-//! cycle against the model and, for the first cycles, against the rust-hdl simulation.
+//! inputs and raw bit patterns, with bubbles), and [`PairFloatCtx`], the [`BlockCtx`] that the one
+//! cross-simulation loop ([`crate::xsim::xsim`]) and the port-word files use.
 
 use crate::campaign::campaign_bounds;
-use crate::dut::PipelinedDut;
 use crate::rtl_sim::TesterSim;
-use crate::slab::ports::{replay_vcd, XsimStats, XSIM_VCD_WINDOW};
-use crate::verilator::Harness;
+use crate::xsim::BlockCtx;
 use golden::bundle::edge::{BoxPair, Bundle};
 use golden::bundle::float::{quantize_box_pair, quantize_bundle, FloatBundle};
 use golden::bundle::gen::BundleGen;
@@ -21,8 +15,7 @@ use golden::slab::float::FloatBox;
 use rand::{Rng, SeedableRng};
 use rand_pcg::Pcg64;
 use rtl::bundle::pair_float::{BundleFloatIo, FloatPairInput};
-use std::collections::VecDeque;
-use std::sync::mpsc::sync_channel;
+use rtl::bundle::ports::PairFloatPorts;
 
 /// One test of the float pair: a bundle (or two rays) and the box pair.
 pub type FloatBundleVec = (FloatPairInput, BoxPair<FloatBox>);
@@ -211,155 +204,28 @@ pub fn two_ray_share_vectors(
     })
 }
 
-/// The value of input port `port` (a Verilog name such as `d_lo_1`) for one cycle (zero for a bubble's
-/// data).
-pub fn bundle_float_in_word(
-    port: &str,
-    tag: u16,
-    v: &Option<FloatBundleVec>,
-) -> Result<u64, String> {
-    let (base, idx) = rtl::verilog::split_port(port);
-    let idx = idx.unwrap_or(0);
-    let Some((input, p)) = v else {
-        return Ok(0);
-    };
-    let (a, r) = input.sides();
-    Ok(match base {
-        "valid_in" => 1,
-        "rst" => 0,
-        "tag_in" => tag as u64,
-        "o_lo" => a.o_lo[idx] as u64,
-        "o_hi" => a.o_hi[idx] as u64,
-        "d_lo" => a.d_lo[idx] as u64,
-        "d_hi" => a.d_hi[idx] as u64,
-        "t_lo" => a.t_lo as u64,
-        "t_hi" => a.t_hi as u64,
-        "two_rays" => input.is_two_rays() as u64,
-        "r_o_lo" => r.o_lo[idx] as u64,
-        "r_o_hi" => r.o_hi[idx] as u64,
-        "r_d_lo" => r.d_lo[idx] as u64,
-        "r_d_hi" => r.d_hi[idx] as u64,
-        "r_t" => r.t_hi as u64,
-        "in_lo" => p.inner.lo[idx] as u64,
-        "in_hi" => p.inner.hi[idx] as u64,
-        "out_lo" => p.outer.lo[idx] as u64,
-        "out_hi" => p.outer.hi[idx] as u64,
-        _ => return Err(format!("unknown input port {port}")),
-    })
-}
+/// The float pair's configuration as the testbenches see it (its format).
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct PairFloatCtx(pub FloatFormat);
 
-/// The output word the model predicts for a port in a cycle whose due result is `due`.
-fn expected_word(port: &str, due: Option<(u16, (bool, bool))>) -> Option<u64> {
-    let (tag, (all_hit, all_miss)) = due?;
-    Some(match port {
-        "valid_out" => 1,
-        "tag_out" => tag as u64,
-        "all_hit" => all_hit as u64,
-        "all_miss" => all_miss as u64,
-        _ => return None,
-    })
-}
-
-/// Streams `vectors` through the Verilator `harness` of a [`BundleFloatIo`] block and checks every output
-/// record against the model (results, tags, latency, and `valid_out` low when nothing is due) and, for
-/// the first `lockstep_cycles` cycles, against the rust-hdl simulation of the block made by `make` (every
-/// port of a valid cycle, `valid_out` always). On a failure the last cycles are replayed into a VCD.
-/// `XsimStats::hits` counts the tests with a decisive answer (`all_hit` or `all_miss` high).
-pub fn bundle_float_xsim<S: BundleFloatIo, It>(
-    make: impl Fn() -> S,
-    harness: &Harness,
-    vectors: It,
-    lockstep_cycles: u64,
-) -> Result<XsimStats, String>
-where
-    It: Iterator<Item = Option<FloatBundleVec>> + Send + 'static,
-{
-    let f = S::format();
-    let ports: Vec<String> = harness.inputs.iter().map(|p| p.name.clone()).collect();
-    let (tx, rx) = sync_channel::<(u16, Option<FloatBundleVec>)>(1 << 16);
-    let lat = S::LATENCY as u64;
-    let mut tag = 0u16;
-    let records = vectors
-        .chain(std::iter::repeat_n(None, lat as usize + 1))
-        .map(move |v| {
-            let t = tag;
-            tag = tag.wrapping_add(v.is_some() as u16);
-            let rec = ports
-                .iter()
-                .map(|p| bundle_float_in_word(p, t, &v).expect("known port"))
-                .collect();
-            tx.send((t, v)).expect("consumer alive");
-            rec
-        });
-    let iv = harness
-        .output_index("valid_out")
-        .ok_or("no valid_out port")?;
-    let mut rtl = (lockstep_cycles > 0).then(|| TesterSim::wrap(make()));
-    let mut pending: VecDeque<(u64, u16, FloatBundleVec)> = VecDeque::new();
-    let mut recent: VecDeque<(u16, Option<FloatBundleVec>)> = VecDeque::new();
-    let mut stats = XsimStats::default();
-    let mut last_cycle = 0u64;
-    let cycles = harness
-        .stream(records, |cycle, out| {
-            let (tg, v) = rx.recv().map_err(|_| "producer ended early".to_string())?;
-            last_cycle = cycle;
-            recent.push_back((tg, v));
-            if recent.len() > XSIM_VCD_WINDOW {
-                recent.pop_front();
-            }
-            if let Some(x) = v {
-                pending.push_back((cycle, tg, x));
-            }
-            let front = pending.front().filter(|p| p.0 + lat == cycle + 1);
-            let due = front.map(|p| (p.1, bundle_float_model(&f, &p.2)));
-            if cycle >= lockstep_cycles {
-                rtl = None;
-            }
-            let sim_out = rtl.as_mut().map(|s| {
-                s.step(v.as_ref().map(|x| (tg, x)));
-                &s.uut
-            });
-            for (k, p) in harness.outputs.iter().enumerate() {
-                if k != iv && out[iv] == 0 {
-                    continue; // data ports are don't-care while not valid
-                }
-                let want = expected_word(&p.name, due).unwrap_or(0);
-                let sim = sim_out.and_then(|u| u.output_word(&p.name));
-                if out[k] != want || sim.is_some_and(|w| w != out[k]) {
-                    return Err(format!(
-                        "cycle {}: output {} is {:#x} in Verilator, {sim:?} in the rust-hdl simulation, \
-                         {want:#x} in the model (latency {lat})\n  test due: {:?}",
-                        cycle + 1,
-                        p.name,
-                        out[k],
-                        front
-                    ));
-                }
-            }
-            if let Some((_, (all_hit, all_miss))) = due {
-                pending.pop_front();
-                stats.tests += 1;
-                stats.hits += (all_hit || all_miss) as u64;
-            }
-            Ok(())
-        })
-        .map_err(|e| {
-            let name = format!("xsim_bundle_float_{}_cycle{}.vcd", f.name(), last_cycle + 1);
-            let path = crate::out_dir().join("vcd").join(name);
-            match replay_vcd(&make, &recent, &path) {
-                Ok(()) => format!(
-                    "{e}\n  waveform of the last {} cycles (rust-hdl): {}",
-                    recent.len(),
-                    path.display()
-                ),
-                Err(w) => format!("{e}\n  (no waveform: {w})"),
-            }
-        })?;
-    stats.cycles = cycles;
-    if !pending.is_empty() {
-        return Err(format!("{} results never left the pipeline", pending.len()));
+impl BlockCtx for PairFloatCtx {
+    type Ray = FloatPairInput;
+    type Box = BoxPair<FloatBox>;
+    type Out = (bool, bool);
+    type Ports = PairFloatPorts;
+    fn name(&self) -> String {
+        format!("bundle_float_{}", self.0.name())
     }
-    Ok(stats)
+    fn ports(&self) -> PairFloatPorts {
+        PairFloatPorts
+    }
+    fn model(&self, r: &FloatPairInput, b: &BoxPair<FloatBox>) -> (bool, bool) {
+        r.model(&self.0, b)
+    }
+    /// A decisive answer: all hit or all miss.
+    fn counts_as_hit(&self, o: &(bool, bool)) -> bool {
+        o.0 || o.1
+    }
 }
 
 /// The stream runner's view of a float bundle pair in simulation (for [`crate::dut::run_checked`]).

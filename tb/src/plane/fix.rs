@@ -2,7 +2,7 @@
 //! generic cross-simulation loop drive it, vector streams, and the conservativeness campaign against the
 //! exact clip and an exact ray-triangle test.
 
-use crate::slab::ports::TesterCtx;
+use crate::xsim::{BlockCtx, TesterCtx};
 use glam::DVec3;
 use golden::error::Error;
 use golden::exact::ExactHit;
@@ -17,7 +17,7 @@ use golden::scene::tri::{tri_hit, Triangle};
 use golden::slab::check::{judge, Verdict};
 use rand::{Rng, SeedableRng};
 use rand_pcg::Pcg64;
-use rtl::slab::fix::{code, sext};
+use rtl::plane::ports::PlaneFixPorts;
 
 /// Scene bounds of the cull-plane campaigns: cases lie in `[-CULL_R, CULL_R]^3`.
 pub const CULL_R: f64 = 64.0;
@@ -29,42 +29,26 @@ pub struct CullFixCtx {
     pub k: usize,
 }
 
-impl TesterCtx for CullFixCtx {
+impl BlockCtx for CullFixCtx {
     type Ray = NodeFixRay;
     type Box = FixNode;
     type Out = PlaneFixOut;
+    type Ports = PlaneFixPorts;
     fn name(&self) -> String {
         rtl::names::plane_fix_module(&self.cf, self.k)
     }
-    fn port_value(&self, base: &str, idx: usize, r: &NodeFixRay, n: &FixNode) -> Option<u64> {
-        let cf = &self.cf;
-        let (n_bits, db, wb) = (cf.n as usize, cf.d_bits() as usize, cf.w_bits() as usize);
-        let p = n.planes.get(idx);
-        Some(match base {
-            "ray_d_lo" => code(r.dir.lo[idx], db),
-            "ray_d_hi" => code(r.dir.hi[idx], db),
-            "plane_nx" => code(p?.n[0], n_bits),
-            "plane_ny" => code(p?.n[1], n_bits),
-            "plane_nz" => code(p?.n[2], n_bits),
-            "plane_w" => code(p?.w, wb),
-            _ => return self.cf.base.port_value(base, idx, &r.ray, &n.b),
-        })
+    fn ports(&self) -> PlaneFixPorts {
+        PlaneFixPorts
     }
     fn model(&self, r: &NodeFixRay, n: &FixNode) -> PlaneFixOut {
         node_fix(&self.cf, self.k, r, n)
     }
-    fn out_fields(&self, o: &PlaneFixOut) -> (bool, u64, u64) {
-        let t = self.cf.base.t as usize;
-        (o.hit, code(o.t_entry, t), code(o.t_exit, t))
+    fn counts_as_hit(&self, o: &PlaneFixOut) -> bool {
+        o.hit
     }
-    fn out_from_fields(&self, hit: bool, t_entry: u64, t_exit: u64) -> PlaneFixOut {
-        let t = self.cf.base.t as usize;
-        PlaneFixOut {
-            hit,
-            t_entry: sext(t_entry, t),
-            t_exit: sext(t_exit, t),
-        }
-    }
+}
+
+impl TesterCtx for CullFixCtx {
     fn world(&self, r: &NodeFixRay, o: &PlaneFixOut) -> (bool, f64, f64) {
         let f = &self.cf.base;
         (

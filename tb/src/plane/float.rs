@@ -4,7 +4,7 @@
 //! ([`CullGen`], quantised with planes fitted by [`float_case`]).
 
 use crate::plane::fix::{float_case, CULL_R};
-use crate::slab::ports::TesterCtx;
+use crate::xsim::{BlockCtx, TesterCtx};
 use golden::exact::ExactHit;
 use golden::plane::float::{
     node_float, out_interval, CullFloatFormat, FloatNode, FloatPlane, NodeFloatRay,
@@ -13,6 +13,7 @@ use golden::plane::gen::CullGen;
 use golden::slab::float::SlabFloatOut;
 use rand::Rng;
 use rand_pcg::Pcg64;
+use rtl::plane::ports::PlaneFloatPorts;
 
 /// One test of the chained tester: `None` is a bubble.
 pub type NodeVec = Option<(NodeFloatRay, FloatNode)>;
@@ -30,37 +31,26 @@ impl CullFloatCtx {
     }
 }
 
-impl TesterCtx for CullFloatCtx {
+impl BlockCtx for CullFloatCtx {
     type Ray = NodeFloatRay;
     type Box = FloatNode;
     type Out = SlabFloatOut;
+    type Ports = PlaneFloatPorts;
     fn name(&self) -> String {
         format!("{}_k{}", self.cf.name(), self.k)
     }
-    fn port_value(&self, base: &str, idx: usize, r: &NodeFloatRay, b: &FloatNode) -> Option<u64> {
-        if let Some(v) = self.cf.f.port_value(base, idx, &r.ray, &b.b) {
-            return Some(v);
-        }
-        let plane = |i: usize| (i < self.k).then(|| b.planes[i]);
-        Some(match base {
-            "ray_d_lo" => r.dir.lo[idx] as u64,
-            "ray_d_hi" => r.dir.hi[idx] as u64,
-            "plane_nx" => plane(idx)?.n[0] as u64,
-            "plane_ny" => plane(idx)?.n[1] as u64,
-            "plane_nz" => plane(idx)?.n[2] as u64,
-            "plane_w" => plane(idx)?.w as u64,
-            _ => return None,
-        })
+    fn ports(&self) -> PlaneFloatPorts {
+        PlaneFloatPorts
     }
     fn model(&self, r: &NodeFloatRay, b: &FloatNode) -> SlabFloatOut {
         node_float(&self.cf, self.k, r, b)
     }
-    fn out_fields(&self, o: &SlabFloatOut) -> (bool, u64, u64) {
-        self.cf.f.out_fields(o)
+    fn counts_as_hit(&self, o: &SlabFloatOut) -> bool {
+        o.hit
     }
-    fn out_from_fields(&self, hit: bool, t_entry: u64, t_exit: u64) -> SlabFloatOut {
-        self.cf.f.out_from_fields(hit, t_entry, t_exit)
-    }
+}
+
+impl TesterCtx for CullFloatCtx {
     fn world(&self, _: &NodeFloatRay, o: &SlabFloatOut) -> (bool, f64, f64) {
         let f = &self.cf.f;
         (o.hit, f.to_f64(o.t_entry), f.to_f64(o.t_exit))

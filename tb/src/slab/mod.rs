@@ -1,5 +1,5 @@
-//! Testbench glue of the slab testers: port encoding and cross-simulation ([`ports`]), proptest
-//! strategies ([`strategies`]).
+//! Testbench glue of the slab testers: their configurations as testbench contexts ([`ctx`]), proptest
+//! strategies ([`strategies`]). The cross-simulation loop is [`crate::xsim`].
 
-pub mod ports;
+pub mod ctx;
 pub mod strategies;

@@ -2,7 +2,7 @@
 //! and quantised world vectors from the adversarial generator.
 
 use crate::campaign::{campaign_map, world_gen};
-use crate::slab::ports::SlabVec;
+use crate::slab::ctx::SlabVec;
 use golden::format::fixed::{FixBox, FixFormat, FixRay};
 use golden::slab::gen::GenKind;
 use proptest::prelude::*;

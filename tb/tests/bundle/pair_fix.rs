@@ -17,12 +17,11 @@ use rand::{Rng, SeedableRng};
 use rand_pcg::Pcg64;
 use rtl::bundle::pair_fix::{BundleFixIo, PairInput};
 use std::time::Instant;
-use tb::bundle::pair_fix::{
-    bundle_model, bundle_rtl, bundle_vectors, bundle_xsim, quantised_case, BundleVec,
-};
+use tb::bundle::pair_fix::{bundle_model, bundle_rtl, bundle_vectors, quantised_case, BundleVec};
 use tb::campaign::{campaign_bounds, campaign_map};
 use tb::dut::run_checked;
 use tb::vcd_read::read_trace;
+use tb::xsim::xsim;
 
 fn preset(i: usize) -> BundleFixFormat {
     BundleFixFormat::presets()[i]
@@ -303,12 +302,13 @@ fn cross_simulate<S: BundleFixIo>(bf: BundleFixFormat, n: u64, lockstep: u64, se
     )
     .unwrap_or_else(|e| panic!("{e}"));
     let built = start.elapsed().as_secs_f64();
-    let stats = bundle_xsim(
+    let stats = xsim(
         bf,
         || S::for_format(&bf),
         &h,
         bundle_vectors(bf, seed, n, true),
         lockstep,
+        |_| {},
     )
     .unwrap_or_else(|e| panic!("{}: {e}", bf.name()));
     println!(
@@ -351,20 +351,9 @@ fn verilator_matches_rtl_and_model_5_clocks() {
 fn reset_clears_every_valid_bit<S: BundleFixIo>(bf: BundleFixFormat) {
     let (v, _) = export::<S>(&bf);
     let name = rtl::names::bundle_fix_of::<S>(&bf);
-    let h = tb::verilator::build(&v, &name, &tb::out_dir().join("verilator"))
-        .unwrap_or_else(|e| panic!("{e}"));
     let tests: Vec<_> = bundle_vectors(bf, 41, 400, false).flatten().collect();
-    let clocks = tb::reset::reset_stream(&tests, S::LATENCY, 41);
-    let vcd = tb::out_dir().join("vcd").join(format!("reset_{name}.vcd"));
-    let word = |p: &str, t: u16, x: &Option<_>| tb::bundle::pair_fix::bundle_in_word(&bf, p, t, x);
-    let s = tb::reset::reset_check(
-        || S::for_format(&bf),
-        |i: &PairInput, p: &_| i.model(&bf, p),
-        &clocks,
-        &vcd,
-        Some((&h, &word)),
-    )
-    .unwrap_or_else(|e| panic!("{name}: {e}\n  waveform (rust-hdl): {}", vcd.display()));
+    let s = tb::reset::check_block(bf, || S::for_format(&bf), &tests, &name, &v, 41)
+        .unwrap_or_else(|e| panic!("{e}"));
     s.both_sides().unwrap_or_else(|e| panic!("{name}: {e}"));
 }
 

@@ -17,13 +17,14 @@ use rtl::bundle::pair_float::{BundleFloatIo, FloatPairInput};
 use rtl::export::bundle_float_verilog_of;
 use std::time::Instant;
 use tb::bundle::pair_float::{
-    bundle_float_model, bundle_float_rtl, bundle_float_vectors, bundle_float_xsim, quantised,
-    ray_bundle, two_ray_share_vectors, FloatBundleVec,
+    bundle_float_model, bundle_float_rtl, bundle_float_vectors, quantised, ray_bundle,
+    two_ray_share_vectors, FloatBundleVec, PairFloatCtx,
 };
 use tb::campaign::campaign_bounds;
 use tb::dut::run_checked;
 use tb::plane::float::with_big_stack;
 use tb::vcd_read::read_trace;
+use tb::xsim::xsim;
 
 fn rtl_matches_model<S: BundleFloatIo + 'static>(n: u64, seed: u64) {
     with_big_stack(move || {
@@ -252,11 +253,13 @@ fn cross_simulate<S: BundleFloatIo + 'static>(n: u64, seed: u64) {
     .unwrap_or_else(|e| panic!("{e}"));
     let built = start.elapsed().as_secs_f64();
     let stats = with_big_stack(move || {
-        bundle_float_xsim(
+        xsim(
+            PairFloatCtx(f),
             || S::for_format(&f),
             &h,
             bundle_float_vectors(f, seed, n, true),
             LOCKSTEP,
+            |_| {},
         )
     })
     .unwrap_or_else(|e| panic!("{}: {e}", f.name()));
@@ -299,22 +302,9 @@ fn reset_clears_every_valid_bit<S: BundleFloatIo + 'static>() {
     let f = S::format();
     let (v, _) = export::<S>();
     let name = rtl::names::bundle_float_of::<S>();
-    let h = tb::verilator::build(&v, &name, &tb::out_dir().join("verilator"))
-        .unwrap_or_else(|e| panic!("{e}"));
     let s = with_big_stack(move || {
         let tests: Vec<_> = bundle_float_vectors(f, 42, 300, false).flatten().collect();
-        let clocks = tb::reset::reset_stream(&tests, <S as rtl::TesterIo>::LATENCY, 42);
-        let vcd = tb::out_dir().join("vcd").join(format!("reset_{name}.vcd"));
-        let word =
-            |p: &str, t: u16, x: &Option<_>| tb::bundle::pair_float::bundle_float_in_word(p, t, x);
-        tb::reset::reset_check(
-            || S::for_format(&f),
-            |i, p| bundle_float_model(&f, &(*i, *p)),
-            &clocks,
-            &vcd,
-            Some((&h, &word)),
-        )
-        .map_err(|e| format!("{name}: {e}\n  waveform (rust-hdl): {}", vcd.display()))
+        tb::reset::check_block(PairFloatCtx(f), || S::for_format(&f), &tests, &name, &v, 42)
     })
     .unwrap_or_else(|e| panic!("{e}"));
     s.both_sides().unwrap_or_else(|e| panic!("{e}"));

@@ -9,8 +9,8 @@ use rtl::plane::fix::PlaneFixIo;
 use tb::dut::run_checked;
 use tb::plane::fix::{cull_fix_campaign, node_fix_vectors, CullFixCtx};
 use tb::rtl_sim::TesterSim;
-use tb::slab::ports::{xsim, TesterCtx};
 use tb::vcd_read::read_trace;
+use tb::xsim::{xsim, BlockCtx};
 
 fn ctx(fmt: FixFormat, k: usize) -> CullFixCtx {
     CullFixCtx {

@@ -11,7 +11,7 @@ use rtl::export::plane_float_verilog;
 use rtl::names::plane_float_module;
 use rtl::plane::float::PlaneFloatIo;
 use tb::plane::float::{node_stream, with_big_stack, CullFloatCtx};
-use tb::slab::ports::xsim;
+use tb::xsim::xsim;
 
 /// Cycles also checked against the rust-hdl simulation (about 2,000 cycles/s there).
 const LOCKSTEP: u64 = 3_000;

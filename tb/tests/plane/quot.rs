@@ -7,15 +7,15 @@
 use golden::exact::{ExactHit, Ext};
 use golden::format::fixed::FixFormat;
 use golden::plane::fix::{cull_fix_quotients, CullFixFormat, FixNode, NodeFixRay};
-use golden::plane::quot::{node_quot, quot_value, quot_word, PlaneQuotOut, Quot};
+use golden::plane::quot::{node_quot, quot_value, PlaneQuotOut, Quot};
 use golden::slab::fix::slab_fix;
+use rtl::plane::ports::PlaneQuotPorts;
 use rtl::plane::quot::PlaneQuotIo;
-use rtl::slab::fix::sext;
 use std::cell::Cell;
 use tb::dut::run_checked;
 use tb::plane::fix::{node_fix_vectors, CullFixCtx};
 use tb::rtl_sim::TesterSim;
-use tb::slab::ports::{xsim, TesterCtx};
+use tb::xsim::{xsim, BlockCtx, TesterCtx};
 
 /// The fraction option's testbench context: the plane format and plane count of [`CullFixCtx`], the
 /// model [`node_quot`], results as the packed fraction words of the ports.
@@ -73,15 +73,19 @@ fn agrees_with_fractions(
     }
 }
 
-impl TesterCtx for QuotCtx {
+impl BlockCtx for QuotCtx {
     type Ray = NodeFixRay;
     type Box = FixNode;
     type Out = PlaneQuotOut;
+    type Ports = PlaneQuotPorts;
     fn name(&self) -> String {
         rtl::names::plane_quot_module(self.cf(), self.0.k)
     }
-    fn port_value(&self, base: &str, idx: usize, r: &NodeFixRay, n: &FixNode) -> Option<u64> {
-        self.0.port_value(base, idx, r, n)
+    fn ports(&self) -> PlaneQuotPorts {
+        PlaneQuotPorts {
+            sb: self.cf().s_bits() as usize,
+            t: self.cf().base.t as usize,
+        }
     }
     /// `node_quot`, checked against `cull_fix_quotients` wherever that has a value.
     fn model(&self, r: &NodeFixRay, n: &FixNode) -> PlaneQuotOut {
@@ -91,29 +95,12 @@ impl TesterCtx for QuotCtx {
         }
         o
     }
-    fn out_fields(&self, o: &PlaneQuotOut) -> (bool, u64, u64) {
-        (
-            o.hit,
-            quot_word(self.cf(), &o.t_entry),
-            quot_word(self.cf(), &o.t_exit),
-        )
+    fn counts_as_hit(&self, o: &PlaneQuotOut) -> bool {
+        o.hit
     }
-    fn out_from_fields(&self, hit: bool, t_entry: u64, t_exit: u64) -> PlaneQuotOut {
-        let (sb, t) = (self.cf().s_bits() as usize, self.cf().base.t as usize);
-        let unpack = |w: u64| {
-            let den = w >> sb;
-            let bits = if den == 0 { t } else { sb };
-            Quot {
-                num: sext(w & ((1 << bits) - 1), bits),
-                den,
-            }
-        };
-        PlaneQuotOut {
-            hit,
-            t_entry: unpack(t_entry),
-            t_exit: unpack(t_exit),
-        }
-    }
+}
+
+impl TesterCtx for QuotCtx {
     fn world(&self, r: &NodeFixRay, o: &PlaneQuotOut) -> (bool, f64, f64) {
         let w = |f: &Quot| quot_value(self.cf(), f).to_f64() * 2f64.powi(r.ray.t_exp);
         (o.hit, w(&o.t_entry), w(&o.t_exit))

@@ -11,7 +11,7 @@ use tb::plane::fix::{raw_node_fix, CullFixCtx};
 use tb::plane::float::{raw_node, with_big_stack};
 use tb::prop::{expect_caught, shrinking_equivalence};
 use tb::rtl_sim::TesterSim;
-use tb::slab::ports::TesterCtx;
+use tb::xsim::BlockCtx;
 
 const CASES: u32 = 1_500;
 /// More words than a raw node draws (about 3 a field).

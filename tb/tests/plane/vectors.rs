@@ -16,7 +16,7 @@ use rand_pcg::Pcg64;
 use tb::engine::{run_cull_fix, run_cull_float, Engine};
 use tb::plane::fix::{cull_map, fix_vector, CullFixCtx};
 use tb::plane::float::{float_vector, CullFloatCtx};
-use tb::slab::ports::TesterCtx;
+use tb::xsim::TesterCtx;
 
 /// `n` world vectors with `k` planes each, through a JSON-lines file and back: half the planes fitted
 /// to the case's triangle (the generator's normals), half with a random offset anywhere across the box

@@ -11,7 +11,7 @@ use rtl::slab::fix::SlabFixIo;
 use rust_hdl::prelude::Block;
 use std::path::PathBuf;
 use tb::campaign::slab_vectors;
-use tb::slab::ports::xsim;
+use tb::xsim::xsim;
 
 /// `(module, Verilog, path)` of every exported fixed slab tester: the presets at 4 and at 6 clocks.
 fn every_module() -> Vec<(String, String, PathBuf)> {

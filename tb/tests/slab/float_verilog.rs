@@ -8,7 +8,7 @@ use golden::slab::gen::GenKind;
 use rtl::export::slab_float_verilog_of;
 use rtl::names::slab_float_module_cuts;
 use rtl::slab::float::SlabFloatIo;
-use tb::slab::ports::xsim;
+use tb::xsim::xsim;
 
 const VECTORS: u64 = 100_000;
 
