@@ -287,6 +287,59 @@ where
     Ok(stats)
 }
 
+/// The clock-by-clock loop of the blocks whose protocol is not one test a clock (the results
+/// processors): streams `stim` through the Verilator `harness`, each clock's input words from
+/// `in_word(port, input)`, decodes each clock's outputs with `decode(word)` (`word(port)` the value
+/// of an output port), checks them with `check(clock, input, outputs)` (the model's checker), and for
+/// the first `lockstep` clocks compares them with `rtl(input)`, the rust-hdl simulation of the block
+/// stepped with the same input. Returns the clocks run.
+pub fn clocked_xsim<I, O, It>(
+    harness: &Harness,
+    stim: It,
+    in_word: impl Fn(&str, &I) -> Result<u64, String> + Send + 'static,
+    decode: impl Fn(&dyn Fn(&str) -> Option<u64>) -> Result<O, String>,
+    mut check: impl FnMut(u64, &I, &O) -> Result<(), String>,
+    lockstep: u64,
+    mut rtl: impl FnMut(&I) -> O,
+) -> Result<u64, String>
+where
+    I: Send + 'static,
+    O: PartialEq + Debug,
+    It: Iterator<Item = I> + Send + 'static,
+{
+    let ports: Vec<String> = harness.inputs.iter().map(|p| p.name.clone()).collect();
+    let (tx, rx) = sync_channel::<I>(1 << 14);
+    let records = stim.map(move |input| {
+        let rec = ports
+            .iter()
+            .map(|p| in_word(p, &input).unwrap_or_else(|e| panic!("{e}")))
+            .collect();
+        tx.send(input).expect("consumer alive");
+        rec
+    });
+    let index: std::collections::HashMap<String, usize> = harness
+        .outputs
+        .iter()
+        .enumerate()
+        .map(|(k, p)| (p.name.clone(), k))
+        .collect();
+    harness.stream(records, |clock, out| {
+        let input = rx.recv().map_err(|_| "producer ended early".to_string())?;
+        let got = decode(&|name| index.get(name).map(|&k| out[k]))?;
+        check(clock, &input, &got).map_err(|e| format!("Verilator: {e}"))?;
+        if clock < lockstep {
+            let s = rtl(&input);
+            if s != got {
+                return Err(format!(
+                    "clock {}: Verilator {got:?}, rust-hdl simulation {s:?}",
+                    clock + 1
+                ));
+            }
+        }
+        Ok(())
+    })
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;

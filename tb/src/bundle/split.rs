@@ -15,6 +15,7 @@ use crate::bundle::pair_fix::{quantised_case, raw_bundle};
 use crate::campaign::{campaign_bounds, campaign_map};
 use crate::rtl_sim::Clocked;
 use crate::verilator::Harness;
+use crate::xsim::clocked_xsim;
 use golden::bundle::fix::{BundleFixFormat, FixBundle};
 use golden::bundle::gen::BundleGen;
 use golden::bundle::split::{split_fix, SplitResult};
@@ -26,7 +27,6 @@ use rand_pcg::Pcg64;
 use rtl::bundle::split::{split_clocks, BundleSplitIo, SplitIn, SplitJob, SplitOut, SPLIT_RAYS};
 use std::collections::VecDeque;
 use std::path::Path;
-use std::sync::mpsc::sync_channel;
 
 /// The ray store as the model sees it.
 pub type RayStore = [FixBundle; SPLIT_RAYS];
@@ -568,55 +568,36 @@ pub fn split_xsim<S: BundleSplitIo, It>(
 where
     It: Iterator<Item = (SplitIn, SplitExpect)> + Send + 'static,
 {
-    let ports: Vec<String> = harness.inputs.iter().map(|p| p.name.clone()).collect();
-    let (tx, rx) = sync_channel::<(SplitIn, SplitExpect)>(1 << 14);
-    let records = stim.map(move |(input, exp)| {
-        let rec = ports
-            .iter()
-            .map(|p| split_in_word(&bf, p, &input).expect("known port"))
-            .collect();
-        tx.send((input, exp)).expect("consumer alive");
-        rec
-    });
-    let mut rtl = (lockstep_cycles > 0).then(|| SplitRtl::<S>::new(&bf));
+    let mut rtl = SplitRtl::<S>::new(&bf);
     let mut stats = SplitStats::default();
-    let word = |out: &[u64], name: &str| -> Result<u64, String> {
-        harness
-            .output_index(name)
-            .map(|k| out[k])
-            .ok_or_else(|| format!("no output port {name}"))
-    };
-    let cycles = harness.stream(records, |cycle, out| {
-        let (input, exp) = rx.recv().map_err(|_| "producer ended early".to_string())?;
-        let got = SplitOut {
-            ready: word(out, "ready")? != 0,
-            done: word(out, "done")? != 0,
-            all_hit: word(out, "all_hit")? != 0,
-            all_miss: word(out, "all_miss")? != 0,
-            split: word(out, "split")? != 0,
-            mask: word(out, "mask")? as u16,
-            cycles: word(out, "cycles")? as u8,
-            clocks: word(out, "clocks")? as u8,
-        };
-        check_out(cycle, &got, &exp).map_err(|e| format!("Verilator: {e}"))?;
-        if cycle >= lockstep_cycles {
-            rtl = None;
-        }
-        if let Some(sim) = rtl.as_mut() {
-            let s = sim.step(&input);
-            if s != got {
-                return Err(format!(
-                    "cycle {}: Verilator {got:?}, rust-hdl simulation {s:?}",
-                    cycle + 1
-                ));
+    let cycles = clocked_xsim(
+        harness,
+        stim,
+        move |port, (input, _): &(SplitIn, SplitExpect)| split_in_word(&bf, port, input),
+        |word| {
+            let w = |name: &str| word(name).ok_or_else(|| format!("no output port {name}"));
+            Ok(SplitOut {
+                ready: w("ready")? != 0,
+                done: w("done")? != 0,
+                all_hit: w("all_hit")? != 0,
+                all_miss: w("all_miss")? != 0,
+                split: w("split")? != 0,
+                mask: w("mask")? as u16,
+                cycles: w("cycles")? as u8,
+                clocks: w("clocks")? as u8,
+            })
+        },
+        |cycle, (input, exp), got| {
+            check_out(cycle, got, exp)?;
+            if let Some(d) = &exp.done {
+                stats.count(d);
             }
-        }
-        if let Some(d) = &exp.done {
-            stats.count(d);
-        }
-        stats.resets += input.reset as u64;
-        Ok(())
-    })?;
+            stats.resets += input.reset as u64;
+            Ok(())
+        },
+        lockstep_cycles,
+        |(input, _)| rtl.step(input),
+    )?;
     stats.cycles = cycles;
     Ok(stats)
 }

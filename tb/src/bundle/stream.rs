@@ -16,6 +16,7 @@ use crate::bundle::pair_float::{quantised, raw_float_bundle, ray_bundle};
 use crate::campaign::{campaign_bounds, campaign_map};
 use crate::rtl_sim::Clocked;
 use crate::verilator::Harness;
+use crate::xsim::clocked_xsim;
 use golden::bundle::edge::BoxPair;
 use golden::bundle::edge::Bundle;
 use golden::bundle::fix::{bundle_dir_exp, BundleFixFormat};
@@ -32,7 +33,6 @@ use rand_pcg::Pcg64;
 use rtl::bundle::stream::BundleStreamIo;
 use std::collections::VecDeque;
 use std::path::Path;
-use std::sync::mpsc::sync_channel;
 
 /// A case for the processor: the bundle, its box pair and its rays, each quantised as a tiny bundle (as
 /// the ray store holds it, [`PairDatapath::Ray`]).
@@ -420,44 +420,23 @@ pub fn stream_xsim<S: BundleStreamIo, It>(
 where
     It: Iterator<Item = StreamInOf<S::Dp>> + Send + 'static,
 {
-    let ports: Vec<String> = harness.inputs.iter().map(|p| p.name.clone()).collect();
-    let (tx, rx) = sync_channel::<StreamInOf<S::Dp>>(1 << 14);
-    let records = stim.map(move |input| {
-        let rec = ports
-            .iter()
-            .map(|p| S::in_word(&dp, p, &input).expect("known port"))
-            .collect();
-        tx.send(input).expect("consumer alive");
-        rec
-    });
-    let mut rtl = (lockstep > 0).then(|| StreamRtl::<S>::new(&dp));
+    let mut rtl = StreamRtl::<S>::new(&dp);
     let mut ck = StreamChecker::of::<S>(&dp);
-    let idx: std::collections::HashMap<String, usize> = harness
-        .outputs
-        .iter()
-        .enumerate()
-        .map(|(k, p)| (p.name.clone(), k))
-        .collect();
-    harness.stream(records, |cycle, out| {
-        let input = rx.recv().map_err(|_| "producer ended early".to_string())?;
-        let got = S::decode_out(&dp, &|name| idx.get(name).map(|&k| out[k]))
-            .ok_or("an output port of the processor is missing from the harness")?;
-        ck.check(&input, &got)
-            .map_err(|e| format!("Verilator: {e}"))?;
-        if cycle >= lockstep {
-            rtl = None;
-        }
-        if let Some(sim) = rtl.as_mut() {
-            let s = sim.step(&input);
-            if s != got {
-                return Err(format!(
-                    "clock {}: Verilator {got:?}, rust-hdl simulation {s:?}",
-                    cycle + 1
-                ));
-            }
-        }
-        Ok(())
-    })?;
+    clocked_xsim(
+        harness,
+        stim,
+        move |port, input| {
+            S::in_word(&dp, port, input).ok_or_else(|| format!("unknown input port {port}"))
+        },
+        |word| {
+            S::decode_out(&dp, word).ok_or_else(|| {
+                "an output port of the processor is missing from the harness".to_string()
+            })
+        },
+        |_, input, got| ck.check(input, got),
+        lockstep,
+        |input| rtl.step(input),
+    )?;
     Ok(ck.stats)
 }
 
