@@ -2,8 +2,8 @@
 //! codecs say ([`crate::slab::ports`]), plus the ray's direction interval `ray_d_lo/hi` and each
 //! plane's `plane_nx/ny/nz/w` (arrays over the planes).
 
-use crate::io::{need, PortCodec, Word};
-use crate::slab::ports::{SlabFixPorts, SlabFloatPorts};
+use crate::io::{PortCodec, Word};
+use crate::slab::ports::{interval_outputs, interval_words, SlabFixPorts, SlabFloatPorts};
 use golden::plane::fix::{FixNode, NodeFixRay, PlaneFixOut};
 use golden::plane::float::{FloatNode, NodeFloatRay};
 use golden::plane::quot::{PlaneQuotOut, Quot};
@@ -38,18 +38,15 @@ impl PortCodec for PlaneFixPorts {
     }
 
     fn outputs(&self, o: &PlaneFixOut) -> Vec<(&'static str, i64)> {
-        vec![
-            ("hit", o.hit as i64),
-            ("t_entry", o.t_entry),
-            ("t_exit", o.t_exit),
-        ]
+        interval_outputs(o.hit, o.t_entry, o.t_exit)
     }
 
     fn result(&self, word: &dyn Fn(&str) -> Option<Word>) -> Result<PlaneFixOut, String> {
+        let (hit, en, ex) = interval_words(word)?;
         Ok(PlaneFixOut {
-            hit: need(word, "hit")?.flag(),
-            t_entry: need(word, "t_entry")?.signed(),
-            t_exit: need(word, "t_exit")?.signed(),
+            hit,
+            t_entry: en.signed(),
+            t_exit: ex.signed(),
         })
     }
 }
@@ -93,18 +90,15 @@ impl PortCodec for PlaneQuotPorts {
     }
 
     fn outputs(&self, o: &PlaneQuotOut) -> Vec<(&'static str, i64)> {
-        vec![
-            ("hit", o.hit as i64),
-            ("t_entry", self.pack(&o.t_entry)),
-            ("t_exit", self.pack(&o.t_exit)),
-        ]
+        interval_outputs(o.hit, self.pack(&o.t_entry), self.pack(&o.t_exit))
     }
 
     fn result(&self, word: &dyn Fn(&str) -> Option<Word>) -> Result<PlaneQuotOut, String> {
+        let (hit, en, ex) = interval_words(word)?;
         Ok(PlaneQuotOut {
-            hit: need(word, "hit")?.flag(),
-            t_entry: self.unpack(need(word, "t_entry")?.bits),
-            t_exit: self.unpack(need(word, "t_exit")?.bits),
+            hit,
+            t_entry: self.unpack(en.bits),
+            t_exit: self.unpack(ex.bits),
         })
     }
 }

@@ -7,6 +7,24 @@ use golden::format::fixed::{FixBox, FixRay};
 use golden::slab::fix::SlabFixOut;
 use golden::slab::float::{FloatBox, FloatRay, SlabFloatOut};
 
+/// The values of the interval outputs `hit`, `t_entry`, `t_exit` (every slab and cull-plane tester).
+pub fn interval_outputs(hit: bool, t_entry: i64, t_exit: i64) -> Vec<(&'static str, i64)> {
+    vec![
+        ("hit", hit as i64),
+        ("t_entry", t_entry),
+        ("t_exit", t_exit),
+    ]
+}
+
+/// The interval outputs read back: `hit`, and the words of `t_entry` and `t_exit`.
+pub fn interval_words(word: &dyn Fn(&str) -> Option<Word>) -> Result<(bool, Word, Word), String> {
+    Ok((
+        need(word, "hit")?.flag(),
+        need(word, "t_entry")?,
+        need(word, "t_exit")?,
+    ))
+}
+
 /// The fixed slab tester's ports: `ray_o_lo/hi` (grid codes), `ray_m_lo/hi` (inverse-direction
 /// magnitudes), `ray_neg`, `ray_t_min/max` (t codes), `box_lo/hi` (grid codes); out `hit`,
 /// `t_entry`, `t_exit` (t codes, signed).
@@ -35,18 +53,15 @@ impl PortCodec for SlabFixPorts {
     }
 
     fn outputs(&self, o: &SlabFixOut) -> Vec<(&'static str, i64)> {
-        vec![
-            ("hit", o.hit as i64),
-            ("t_entry", o.t_entry),
-            ("t_exit", o.t_exit),
-        ]
+        interval_outputs(o.hit, o.t_entry, o.t_exit)
     }
 
     fn result(&self, word: &dyn Fn(&str) -> Option<Word>) -> Result<SlabFixOut, String> {
+        let (hit, en, ex) = interval_words(word)?;
         Ok(SlabFixOut {
-            hit: need(word, "hit")?.flag(),
-            t_entry: need(word, "t_entry")?.signed(),
-            t_exit: need(word, "t_exit")?.signed(),
+            hit,
+            t_entry: en.signed(),
+            t_exit: ex.signed(),
         })
     }
 }
@@ -78,18 +93,15 @@ impl PortCodec for SlabFloatPorts {
     }
 
     fn outputs(&self, o: &SlabFloatOut) -> Vec<(&'static str, i64)> {
-        vec![
-            ("hit", o.hit as i64),
-            ("t_entry", o.t_entry as i64),
-            ("t_exit", o.t_exit as i64),
-        ]
+        interval_outputs(o.hit, o.t_entry as i64, o.t_exit as i64)
     }
 
     fn result(&self, word: &dyn Fn(&str) -> Option<Word>) -> Result<SlabFloatOut, String> {
+        let (hit, en, ex) = interval_words(word)?;
         Ok(SlabFloatOut {
-            hit: need(word, "hit")?.flag(),
-            t_entry: need(word, "t_entry")?.bits as u32,
-            t_exit: need(word, "t_exit")?.bits as u32,
+            hit,
+            t_entry: en.bits as u32,
+            t_exit: ex.bits as u32,
         })
     }
 }
