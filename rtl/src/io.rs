@@ -160,7 +160,7 @@ pub trait TesterIo: Block {
     fn set_valid(&mut self, valid: bool, tag: u16);
     /// Drives every data input with `value(base, idx)`.
     fn set_inputs(&mut self, value: &dyn Fn(&str, usize) -> i64);
-    /// The word of an output port, by its Verilog name (`valid_out`, `tag_out`, `hit`, `t_entry_0`, ...).
+    /// The word of an output port, by its Verilog name (`valid_out`, `tag_out`, `hit`, ...; an element of an array port as `<name>_<index>`).
     fn output(&self, port: &str) -> Option<Word>;
 
     /// Drives one test: `None` drives a bubble (`valid_in` low; the data inputs keep their values).

@@ -318,7 +318,7 @@ where
                     let v = Some((r, b));
                     let rec: Vec<u64> = ports
                         .iter()
-                        .map(|p| in_word(&ctx, p, tag, &v).expect("known port"))
+                        .map(|p| in_word(&ctx, p, tag, &v).unwrap_or_else(|e| panic!("{e}")))
                         .collect();
                     tag = tag.wrapping_add(1);
                     tx.send((k, r)).expect("consumer alive");

@@ -86,7 +86,8 @@ pub fn in_row<C: BlockCtx>(
 }
 
 /// The output words of the result `o` with tag `tag`, one per port of `cols` (`valid_out` 1,
-/// `tag_out`, and the data outputs through the codec).
+/// `tag_out`, and the data outputs through the codec). A value that does not fit its port (as an
+/// unsigned or a two's complement number) is an error: the model gave what the port cannot carry.
 pub fn out_row<C: BlockCtx>(
     ctx: &C,
     cols: &[Port],
@@ -101,8 +102,18 @@ pub fn out_row<C: BlockCtx>(
                 "tag_out" => Some(tag as i64),
                 name => data.iter().find(|(n, _)| *n == name).map(|x| x.1),
             };
-            v.map(|v| Word::of(v, p.width).bits)
-                .ok_or_else(|| format!("{} has no output port {}", ctx.name(), p.name))
+            let v = v.ok_or_else(|| format!("{} has no output port {}", ctx.name(), p.name))?;
+            let w = Word::of(v, p.width);
+            if w.bits as i64 == v || w.signed() == v {
+                Ok(w.bits)
+            } else {
+                Err(format!(
+                    "{}: the value {v} of output {} does not fit its {} bits",
+                    ctx.name(),
+                    p.name,
+                    p.width
+                ))
+            }
         })
         .collect()
 }
@@ -195,6 +206,15 @@ where
     let iv = harness
         .output_index("valid_out")
         .ok_or("no valid_out port")?;
+    // Every output the checks read must be in the harness: the tag, and each data output the codec
+    // reads (an error names the first one missing).
+    harness.output_index("tag_out").ok_or("no tag_out port")?;
+    ctx.ports().result(&|name| {
+        harness.output_index(name).map(|k| Word {
+            bits: 0,
+            width: outs[k].width,
+        })
+    })?;
     let mut rtl = (lockstep_cycles > 0).then(|| TesterSim::wrap(make()));
     let mut pending: VecDeque<(u64, u16, C::Ray, C::Box)> = VecDeque::new();
     let mut stats = XsimStats::default();
@@ -380,6 +400,35 @@ mod tests {
             assert_eq!(w.width, p.width, "{}: width of {}", e.module, p.name);
         }
         assert!(block.output("no_such_port").is_none());
+    }
+
+    /// The expected words fit their ports or are an error naming the port: a model value wider than its
+    /// port is not truncated into a match.
+    #[test]
+    fn a_result_wider_than_its_port_is_an_error() {
+        use golden::slab::fix::SlabFixOut;
+        let port = |name: &str, width| Port {
+            name: name.into(),
+            width,
+            input: false,
+        };
+        let cols = [
+            port("tag_out", 16),
+            port("hit", 1),
+            port("t_entry", 4),
+            port("t_exit", 4),
+        ];
+        let b8 = FixFormat::b8();
+        let o = SlabFixOut {
+            hit: true,
+            t_entry: -3,
+            t_exit: 15,
+        };
+        assert_eq!(out_row(&b8, &cols, 7, &o), Ok(vec![7, 1, 0xd, 0xf]));
+        for bad in [17, -9] {
+            let e = out_row(&b8, &cols, 7, &SlabFixOut { t_entry: bad, ..o }).unwrap_err();
+            assert!(e.contains("t_entry") && e.contains("does not fit"), "{e}");
+        }
     }
 
     #[test]

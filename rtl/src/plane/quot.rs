@@ -23,7 +23,7 @@
 //! Inputs: those of `PlaneFix`. Outputs: `valid_out`, `tag_out`, `hit` (not culled), and `t_entry`,
 //! `t_exit`, each a fraction packed as `{den, num}` (`den` in the top `MB` bits, `num` in the low `SB`):
 //! `den != 0` is the plane bound `num * 2^E / den`; `den = 0` is the slab's t code in the low `T` bits of
-//! `num` (`+-inf` codes included). [`Quot`] is the unpacked form.
+//! `num` (`+-inf` codes included). [`Quot`](golden::plane::quot::Quot) is the unpacked form ([`crate::plane::ports::PlaneQuotPorts`] packs and unpacks).
 //!
 //! # Stages
 //! 1. `_q1`: per plane, [`PlaneSums`] (as `PlaneFix`); the slab tester runs in parallel (out at clock 4).

@@ -420,7 +420,7 @@ pub fn stream_xsim<S: BundleStreamIo, It>(
 where
     It: Iterator<Item = StreamInOf<S::Dp>> + Send + 'static,
 {
-    let mut rtl = StreamRtl::<S>::new(&dp);
+    let mut rtl = (lockstep > 0).then(|| StreamRtl::<S>::new(&dp));
     let mut ck = StreamChecker::of::<S>(&dp);
     clocked_xsim(
         harness,
@@ -435,7 +435,7 @@ where
         },
         |_, input, got| ck.check(input, got),
         lockstep,
-        |input| rtl.step(input),
+        |input| rtl.as_mut().expect("built for lockstep").step(input),
     )?;
     Ok(ck.stats)
 }

@@ -1,5 +1,6 @@
-//! Testbench glue of the fixed-point chained slab + cull-plane tester: the [`TesterCtx`] that lets the
-//! generic cross-simulation loop drive it, vector streams, and the conservativeness campaign against the
+//! Testbench glue of the fixed-point chained slab + cull-plane tester: its context [`CullFixCtx`]
+//! ([`BlockCtx`] for the cross-simulation loop and the port words, [`TesterCtx`] for the judge), vector
+//! streams, and the conservativeness campaign against the
 //! exact clip and an exact ray-triangle test.
 
 use crate::xsim::{BlockCtx, TesterCtx};

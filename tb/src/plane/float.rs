@@ -1,5 +1,6 @@
-//! Testbench glue of the chained float node tester (`rtl::PlaneFloat`): its [`TesterCtx`]
-//! ([`CullFloatCtx`]: port encoding, the model `golden::plane::float::node_float`, the judge), and vector
+//! Testbench glue of the chained float node tester (`rtl::PlaneFloat`): its context [`CullFloatCtx`]
+//! ([`BlockCtx`]: the port codec and the model `golden::plane::float::node_float`; [`TesterCtx`]: the
+//! judge), and vector
 //! streams — raw bit patterns (NaN and infinities included) and the cull-plane campaign's cases
 //! ([`CullGen`], quantised with planes fitted by [`float_case`]).
 
