@@ -39,12 +39,20 @@
 //! 4. the products scaled, rounded (`entry` floored, `exit` ceiled) and saturated to t codes; cut
 //!    [`cut::BOUND`] (`_q2`);
 //! 5. the first level of the max/min trees with `t_min`/`t_max`; cut [`cut::TREE`] (`_q3`);
-//! 6. the final max/min and the hit decision; cut [`cut::OUT`] (`_q4`), which drives the outputs.
+//! 6. the final max/min and the hit decision; cut [`cut::OUT`] (`_q4`), which drives the outputs. With
+//!    [`cut::PRODUCT`] set the decision compares the four tree halves side by side (one comparison
+//!    deep, not a comparison behind the max and min), because this clock is then the tester's limit;
+//!    without it the multiply-and-round clock is, and the chained form takes half the LUT4s there.
 //!
 //! The default (4 clocks) puts steps 2 to 4, a whole multiply-and-round, in one clock, the critical path
 //! of the tester on an FPGA; the deep configuration (6 clocks) gives the multiplies a clock of their own,
 //! registered operands in front and a registered product behind, as a DSP block's input and output
 //! registers would be.
+//!
+//! Measured after place and route on ECP5 (`scripts/timing slab_fix_`, `docs/timing/timing.md`): the
+//! deep configuration runs at 130-180 MHz, limited by the multiplies themselves (flip-flop, DSP,
+//! flip-flop); `scripts/ceiling/` measures that path alone at about 190 MHz for one `MULT18X18D` and
+//! 143 MHz for the two of the 16-bit grid's product.
 //!
 //! Signed comparisons are unsigned comparisons of the sign-flipped codes: rust-hdl's `Signed` compares
 //! through big integers in simulation and emits unsized `$signed` casts in Verilog.
@@ -135,6 +143,8 @@ pub struct SlabFix<
     sign_t: Constant<Bits<T>>,
     t_pinf: Constant<Bits<T>>,
     t_ninf: Constant<Bits<T>>,
+    /// The hit decision one comparison deep (with [`cut::PRODUCT`]); see the last step of `update`.
+    hit_flat: Constant<Bit>,
     // distances
     axis: [AxisDist<G, D>; 3],
     empty: Signal<Local, Bit>,
@@ -240,6 +250,7 @@ impl<const G: usize, const D: usize, const I: usize, const T: usize, const CUTS:
             sign_t: Constant::new(bits::<T>(1 << (T - 1))),
             t_pinf: Constant::new(bits::<T>((1 << (T - 1)) - 1)),
             t_ninf: Constant::new(bits::<T>(1 << (T - 1))),
+            hit_flat: Constant::new(p),
             axis: Default::default(),
             empty: Default::default(),
             e_q1: Cut::array(d),
@@ -468,10 +479,32 @@ impl<const G: usize, const D: usize, const I: usize, const T: usize, const CUTS:
         }
         self.entry_q4.d.next = self.entry.val();
         self.exit_q4.d.next = self.exit.val();
-        self.hit_q4.d.next = !self.empty_q3.q.val()
-            & ((self.entry.val() ^ self.sign_t.val()) <= (self.exit.val() ^ self.sign_t.val()))
-            & (self.entry.val() != self.t_pinf.val())
-            & (self.exit.val() != self.t_ninf.val());
+        // The hit decision. With the multiplies in a clock of their own (cut::PRODUCT) this clock is
+        // the tester's limit, so it reads the four tree halves side by side, one comparison deep:
+        // max(ea, eb) <= min(xa, xb) is the four comparisons ea <= xa, ea <= xb, eb <= xa, eb <= xb;
+        // the max is +inf when either half is, the min -inf when either half is. Otherwise the
+        // multiply-and-round clock is the limit and the decision reads the max and min just chosen
+        // (two comparisons deep, fewer LUTs).
+        if self.hit_flat.val() {
+            self.hit_q4.d.next = !self.empty_q3.q.val()
+                & ((self.entry_a_q3.q.val() ^ self.sign_t.val())
+                    <= (self.exit_a_q3.q.val() ^ self.sign_t.val()))
+                & ((self.entry_a_q3.q.val() ^ self.sign_t.val())
+                    <= (self.exit_b_q3.q.val() ^ self.sign_t.val()))
+                & ((self.entry_b_q3.q.val() ^ self.sign_t.val())
+                    <= (self.exit_a_q3.q.val() ^ self.sign_t.val()))
+                & ((self.entry_b_q3.q.val() ^ self.sign_t.val())
+                    <= (self.exit_b_q3.q.val() ^ self.sign_t.val()))
+                & (self.entry_a_q3.q.val() != self.t_pinf.val())
+                & (self.entry_b_q3.q.val() != self.t_pinf.val())
+                & (self.exit_a_q3.q.val() != self.t_ninf.val())
+                & (self.exit_b_q3.q.val() != self.t_ninf.val());
+        } else {
+            self.hit_q4.d.next = !self.empty_q3.q.val()
+                & ((self.entry.val() ^ self.sign_t.val()) <= (self.exit.val() ^ self.sign_t.val()))
+                & (self.entry.val() != self.t_pinf.val())
+                & (self.exit.val() != self.t_ninf.val());
+        }
         self.valid_q4.d.next = self.valid_q3.q.val() & !self.rst.val();
         self.tag_q4.d.next = self.tag_q3.q.val();
 
