@@ -2,6 +2,7 @@
 //!
 //! One test binary for the family; each file beside this one is a module of it.
 
+mod bound_scale;
 mod fix;
 mod float_equivalence;
 mod float_vcd;
