@@ -50,8 +50,9 @@ endmodule
         .collect()
 }
 
-/// Every input of `pw`-bit products for each scale exponent of `shifts`; returns how many results
-/// saturated at each end (low, high) over all of them, so a caller can say which it expects.
+/// Every input of `pw`-bit products for each scale exponent of `shifts`; returns how many inputs scaled
+/// past each end of the t code's range (low, high), before the clamp, so a caller can say which it
+/// expects.
 fn every_input<const T: usize>(tag: &str, pw: usize, shifts: &[i32]) -> (usize, usize) {
     let (ninf, pinf) = (-(1i64 << (T - 1)), (1i64 << (T - 1)) - 1);
     let mut saturated = (0, 0);
@@ -67,14 +68,28 @@ fn every_input<const T: usize>(tag: &str, pw: usize, shifts: &[i32]) -> (usize, 
             let (p, lead, class) = ((n >> 2) / LEADS as usize, (n >> 2) % LEADS as usize, n & 3);
             let (exit, entry) = (class & 1 == 1, class & 2 == 2);
             let want = if exit || entry {
-                let v = scale_product(c, T as u32, sext(p as u64, pw) as i128, lead as u32, exit);
-                if v <= ninf + 1 {
+                let q = sext(p as u64, pw) as i128;
+                // The scaled value before the clamp, to count the inputs that reach past an end.
+                let sh = c - lead as i32;
+                let unclamped = if sh >= 0 {
+                    q << sh
+                } else if exit {
+                    -((-q) >> -sh)
+                } else {
+                    q >> -sh
+                };
+                let (lo, hi) = if exit {
+                    (ninf + 1, pinf)
+                } else {
+                    (ninf, pinf - 1)
+                };
+                if unclamped < lo as i128 {
                     saturated.0 += 1;
                 }
-                if v >= pinf - 1 {
+                if unclamped > hi as i128 {
                     saturated.1 += 1;
                 }
-                code(v, T)
+                code(scale_product(c, T as u32, q, lead as u32, exit), T)
             } else {
                 0
             };
