@@ -69,24 +69,18 @@ fn every_input<const T: usize>(tag: &str, pw: usize, shifts: &[i32]) -> (usize, 
             let (exit, entry) = (class & 1 == 1, class & 2 == 2);
             let want = if exit || entry {
                 let q = sext(p as u64, pw) as i128;
-                // The scaled value before the clamp, to count the inputs that reach past an end.
-                let sh = c - lead as i32;
-                let unclamped = if sh >= 0 {
-                    q << sh
-                } else if exit {
-                    -((-q) >> -sh)
-                } else {
-                    q >> -sh
-                };
+                // The scaled value before the clamp (the model at 64-bit codes, which these small
+                // products never reach), to count the inputs that reach past an end.
+                let unclamped = scale_product(c, 64, q, lead as u32, exit);
                 let (lo, hi) = if exit {
                     (ninf + 1, pinf)
                 } else {
                     (ninf, pinf - 1)
                 };
-                if unclamped < lo as i128 {
+                if unclamped < lo {
                     saturated.0 += 1;
                 }
-                if unclamped > hi as i128 {
+                if unclamped > hi {
                     saturated.1 += 1;
                 }
                 code(scale_product(c, T as u32, q, lead as u32, exit), T)
